@@ -1,0 +1,132 @@
+"""Ship and pipeline configuration: YAML files validated against the JSON schemas.
+
+The schemas live in ``workflow/schemas`` (shipped in the package as ``stabflow/schemas``); they hold
+every key's description, unit and default. Validation errors name the file and the field.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import jsonschema
+import yaml
+
+from . import StabflowError
+
+SCHEMA_DIR = Path(__file__).parent / "schemas"
+
+
+@cache
+def schema(name: str) -> dict:
+    """Return the parsed JSON schema ``<name>.schema.yaml``."""
+    with open(SCHEMA_DIR / f"{name}.schema.yaml") as fh:
+        return yaml.safe_load(fh)
+
+
+def _fill_defaults(sch: dict, data: Any) -> Any:
+    """Insert schema defaults for missing object keys (recursively)."""
+    if not isinstance(data, dict) or sch.get("type") != "object":
+        return data
+    for key, sub in sch.get("properties", {}).items():
+        if key not in data and "default" in sub:
+            data[key] = copy.deepcopy(sub["default"])
+        if key in data:
+            data[key] = _fill_defaults(sub, data[key])
+    return data
+
+
+def validate(data: Any, name: str, source: str | Path) -> dict:
+    """Validate ``data`` against schema ``name``; fill defaults.
+
+    Raises
+    ------
+    StabflowError
+        ``"<source>: <field.path>: <reason>"`` for the first error found.
+    """
+    sch = schema(name)
+    validator = jsonschema.Draft202012Validator(sch)
+    errors = sorted(validator.iter_errors(data), key=lambda e: (len(e.path), list(map(str, e.path))))
+    if errors:
+        err = errors[0]
+        field = ".".join(str(p) for p in err.absolute_path) or "(top level)"
+        msg = err.message
+        if err.validator == "oneOf":
+            msg = "give exactly one of " + " / ".join(
+                "+".join(s.get("required", [])) for s in err.validator_value
+            )
+        raise StabflowError(f"{source}: {field}: {msg}")
+    return _fill_defaults(sch, copy.deepcopy(data))
+
+
+def load_yaml(path: str | Path) -> Any:
+    """Read a YAML file, turning I/O and syntax errors into :class:`StabflowError`."""
+    path = Path(path)
+    if not path.is_file():
+        raise StabflowError(f"{path}: file not found")
+    try:
+        with open(path) as fh:
+            return yaml.safe_load(fh)
+    except yaml.YAMLError as exc:
+        raise StabflowError(f"{path}: not valid YAML: {exc}") from exc
+
+
+@dataclass(frozen=True)
+class Ship:
+    """A validated ship configuration.
+
+    Attributes
+    ----------
+    name : str
+        Ship identifier.
+    path : Path
+        The YAML file it came from (hull files resolve relative to its folder).
+    data : dict
+        The validated configuration with defaults filled in.
+    """
+
+    name: str
+    path: Path
+    data: dict
+
+    @property
+    def hull(self) -> dict:
+        return self.data["hull"]
+
+    @property
+    def loading(self) -> dict:
+        return self.data["loading"]
+
+    @property
+    def rho(self) -> float:
+        """Water density [kg/m^3]."""
+        return float(self.data["water_density"])
+
+    def hull_file(self) -> Path:
+        """Absolute path of the hull file named in ``hull.file``."""
+        if "file" not in self.hull:
+            raise StabflowError(f"{self.path}: hull.file: required for source {self.hull['source']!r}")
+        return (self.path.parent / self.hull["file"]).resolve()
+
+
+def load_ship(path: str | Path) -> Ship:
+    """Load and validate ``config/ships/<name>.yaml``."""
+    path = Path(path)
+    data = validate(load_yaml(path), "ship", path)
+    if data["name"] != path.stem:
+        raise StabflowError(f"{path}: name: {data['name']!r} must equal the file name {path.stem!r}")
+    src = data["hull"]["source"]
+    need = {"box": ["length", "breadth", "depth"], "wigley": ["length", "breadth", "depth", "design_draft"],
+            "mesh": ["file"], "offsets": ["file"]}[src]
+    for key in need:
+        if key not in data["hull"]:
+            raise StabflowError(f"{path}: hull.{key}: required for source {src!r}")
+    return Ship(name=data["name"], path=path, data=data)
+
+
+def load_pipeline(path: str | Path) -> dict:
+    """Load and validate the pipeline configuration (``config/config.yaml``)."""
+    return validate(load_yaml(path), "config", path)

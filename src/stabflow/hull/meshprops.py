@@ -1,0 +1,67 @@
+"""Exact submerged volume and centroid of a closed triangle mesh (independent of the sections).
+
+Divergence theorem with fields that vanish on the waterplane z_e = 0, so no cap is needed:
+V = ∫_S z n_z dS, ∫x dV = ∫_S x z n_z dS, ∫y dV = ∫_S y z n_z dS, ∫z dV = ∫_S z^2/2 n_z dS over
+the hull surface below the plane (earth frame). Used as the reference for the sectional method.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import trimesh
+
+
+def earth_vertices(vertices: np.ndarray, phi: float, theta: float, h: float) -> np.ndarray:
+    """Body → earth coordinates, rotation R = Ry(theta) Rx(phi), body origin at height h."""
+    cp, sp, ct, st = np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta)
+    x, y, z = vertices.T
+    y1 = cp * y - sp * z
+    z1 = sp * y + cp * z
+    return np.column_stack([ct * x + st * z1, y1, -st * x + ct * z1 + h])
+
+
+def submerged(mesh: trimesh.Trimesh, phi: float, theta: float, h: float):
+    """Submerged volume [m^3] and centroid (earth frame) [m] below calm water z_e = 0."""
+    ve = earth_vertices(np.asarray(mesh.vertices, dtype=np.float64), phi, theta, h)
+    v, f, _ = trimesh.intersections.slice_faces_plane(ve, mesh.faces, plane_normal=[0, 0, -1.0], plane_origin=[0, 0, 0.0])
+    tri = v[f]
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    n = np.cross(b - a, c - a) * 0.5  # area-weighted normal
+    # exact integrals over each triangle of z, xz, yz, z^2/2 (quadratic: 3-point edge-midpoint rule)
+    m = np.stack([(a + b) / 2, (b + c) / 2, (c + a) / 2], axis=1)
+    z = m[..., 2]
+    nz = n[:, 2]
+    V = float((z.mean(axis=1) * nz).sum())
+    if V <= 0:
+        return 0.0, np.zeros(3)
+    Ix = float(((m[..., 0] * z).mean(axis=1) * nz).sum())
+    Iy = float(((m[..., 1] * z).mean(axis=1) * nz).sum())
+    Iz = float(((0.5 * z * z).mean(axis=1) * nz).sum())
+    return V, np.array([Ix, Iy, Iz]) / V
+
+
+def mesh_gz(mesh: trimesh.Trimesh, volume: float, lcg: float, kg: float, heel_deg, guess=None) -> np.ndarray:
+    """Free-trim GZ [m] by exact integration over the mesh (reference for the sectional method).
+
+    ``guess`` is an optional (n, 2) array of (h, theta) starting points per heel.
+    """
+    from scipy.optimize import fsolve
+
+    L = float(np.ptp(mesh.vertices[:, 0]))
+    out = []
+    prev = None
+    for k, hd in enumerate(np.atleast_1d(heel_deg)):
+        phi = np.radians(hd)
+
+        def F(p):
+            V, c = submerged(mesh, phi, p[1], p[0])
+            G = earth_vertices(np.array([[lcg, 0.0, kg]]), phi, p[1], p[0])[0]
+            return [(V - volume) / volume, (c[0] - G[0]) / L]
+
+        x0 = guess[k] if guess is not None else (prev if prev is not None else [0.0, 0.0])
+        sol = fsolve(F, x0, xtol=1e-11)
+        prev = sol
+        V, c = submerged(mesh, phi, sol[1], sol[0])
+        G = earth_vertices(np.array([[lcg, 0.0, kg]]), phi, sol[1], sol[0])[0]
+        out.append(G[1] - c[1])
+    return np.array(out)
