@@ -1,0 +1,16 @@
+# stabflow: ship dynamic stability in irregular seas.
+# The whole pipeline on one screen: config -> hull -> statics -> report.
+
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/hull.smk"
+include: "workflow/rules/statics.smk"
+include: "workflow/rules/report.smk"
+
+
+rule all:
+    input:
+        all_outputs(),

@@ -1,0 +1,51 @@
+"""Figures: one function per figure kind; every axis carries units."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+from .io import atomic_savefig  # noqa: E402
+
+
+def body_plan(hull: xr.Dataset, path, title: str | None = None):
+    """Classic body plan: aft-body stations on the left (mirrored), fore-body on the right."""
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    x = hull["x"].values
+    for i in range(len(x)):
+        n = int(hull["n_points"][i])
+        y, z = hull["y"].values[i, :n], hull["z"].values[i, :n]
+        sgn = 1.0 if x[i] >= 0 else -1.0
+        ax.plot(sgn * y, z, color="C0" if sgn > 0 else "C1", lw=0.8)
+    ax.axvline(0, color="k", lw=0.5)
+    ax.set_aspect("equal")
+    ax.set_xlabel("half-breadth y [m] (aft body left, fore body right)")
+    ax.set_ylabel("height above baseline z [m]")
+    ax.set_title(title or f"Body plan: {hull.attrs.get('ship', '')} ({len(x)} stations)")
+    fig.tight_layout()
+    atomic_savefig(fig, path, dpi=120)
+    plt.close(fig)
+
+
+def gz_curves(curves: dict[str, xr.DataArray], path, title: str = "", gm: float | None = None):
+    """GZ curves [m] against heel [degree]; ``curves`` maps a label to a ``gz`` DataArray."""
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for label, da in curves.items():
+        ax.plot(da["heel"], da, label=label)
+    if gm is not None:
+        h = np.linspace(0, 30, 10)
+        ax.plot(h, gm * np.radians(h), "k:", lw=0.8, label=f"GM·φ (GM = {gm:.3f} m)")
+    ax.axhline(0, color="k", lw=0.5)
+    ax.set_xlabel("heel φ [degree]")
+    ax.set_ylabel("righting arm GZ [m]")
+    ax.set_xlim(0, float(max(da["heel"].max() for da in curves.values())))
+    ax.grid(alpha=0.3)
+    ax.legend()
+    ax.set_title(title)
+    fig.tight_layout()
+    atomic_savefig(fig, path, dpi=120)
+    plt.close(fig)

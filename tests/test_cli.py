@@ -1,0 +1,37 @@
+"""The stabflow CLI runs each step outside Snakemake; bad input exits non-zero writing nothing."""
+
+import subprocess
+import sys
+
+import xarray as xr
+
+from stabflow.cli import main
+
+from .conftest import SHIPS
+
+
+def test_hull_and_statics_cli(tmp_path):
+    out = tmp_path / "results"
+    assert main(["hull", str(SHIPS / "barge.yaml"), "-o", str(out / "hull.nc"), "--figure", str(out / "bp.png")]) == 0
+    assert main(["statics", str(SHIPS / "barge.yaml"), "--hull", str(out / "hull.nc"), "-o", str(out / "st.nc")]) == 0
+    with xr.open_dataset(out / "st.nc") as ds:
+        assert ds.gz.attrs["units"] == "m"
+        assert ds.heel.size == 181
+    assert (out / "bp.png").stat().st_size > 1000
+
+
+def test_bad_input_exit_code_and_nothing_written(tmp_path, ship_file):
+    p = ship_file("barge", loading={"draft": 6.0, "kg": -3.0})
+    out = tmp_path / "results"
+    r = subprocess.run([sys.executable, "-m", "stabflow.cli", "hull", str(p), "-o", str(out / "h.nc")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2
+    assert "loading.kg" in r.stderr and str(p) in r.stderr
+    assert r.stderr.count("\n") == 1  # one clear line, no traceback
+    assert not out.exists() or not any(out.rglob("*"))
+
+
+def test_gz_command_prints_table(capsys):
+    assert main(["gz", str(SHIPS / "barge.yaml"), "--every", "30"]) == 0
+    out = capsys.readouterr().out
+    assert "gm" in out and "1.5556" in out

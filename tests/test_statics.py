@@ -1,0 +1,114 @@
+"""Calm-water statics against exact, independent and published results."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+from stabflow import StabflowError
+from stabflow.config import load_ship
+from stabflow.hull import build_hull
+from stabflow.statics import StabilityWarning, compute_statics
+from stabflow.validation import exact_box_gz, navaltoolbox_gz, statics_checks
+
+from .conftest import SHIPS
+
+
+@pytest.fixture(scope="module")
+def results():
+    out = {}
+    for name in ["barge", "wigley", "dtmb5415", "dtc"]:
+        ship = load_ship(SHIPS / f"{name}.yaml")
+        hull = build_hull(ship)
+        out[name] = (ship, hull, compute_statics(ship, hull))
+    return out
+
+
+@pytest.mark.filterwarnings("ignore::stabflow.statics.StabilityWarning")
+@pytest.mark.parametrize("kg", [5.0, 7.0, 9.0])
+def test_box_barge_gz_exact_0_180(ship_file, kg):
+    """Box barge GZ equals exact polygon clipping at every degree 0-180, error <= 0.5 % GZmax."""
+    ship = load_ship(ship_file("barge", loading={"draft": 6.0, "kg": kg}))
+    st = compute_statics(ship, build_hull(ship))
+    ref = exact_box_gz(100.0, 20.0, 12.0, 12000.0, kg, st.heel.values)
+    assert np.abs(st.gz.values - ref).max() <= 0.005 * np.abs(ref).max()
+    assert np.abs(st.gz.values - ref).max() < 1e-8  # in fact exact to round-off
+
+
+def test_box_barge_particulars(results):
+    _, _, st = results["barge"]
+    assert float(st.kb) == pytest.approx(3.0)
+    assert float(st.bm) == pytest.approx(400 / 72)
+    assert float(st.waterplane_area) == pytest.approx(2000.0)
+    assert float(st.gm) == pytest.approx(3 + 400 / 72 - 7)
+
+
+def test_dtmb5415_published(results):
+    _, _, st = results["dtmb5415"]
+    assert float(st.volume) == pytest.approx(8424.0, rel=0.01)
+    assert float(st.gm) == pytest.approx(1.95, abs=0.05)
+    assert float(st.draft_mid) == pytest.approx(6.15)
+
+
+@pytest.mark.parametrize("name", ["dtmb5415", "dtc"])
+def test_gz_vs_navaltoolbox(results, name):
+    """Within 2 % of GZmax of navaltoolbox (same displacement, G, free trim) over 0-60 deg."""
+    ship, _, st = results[name]
+    heels = np.arange(0.0, 61.0, 5.0)
+    ref = navaltoolbox_gz(ship, float(st.volume), float(st.lcg), float(st.kg), heels)
+    err = np.abs(st.gz.sel(heel=heels).values - ref).max()
+    assert err <= 0.02 * float(st.gz_max)
+
+
+@pytest.mark.parametrize("name", ["barge", "wigley", "dtmb5415", "dtc"])
+def test_all_validation_checks_pass(results, name):
+    """Exact mesh integration 0-180 deg, station doubling < 0.5 % GZmax, analytic/published values."""
+    ship, hull, st = results[name]
+    checks = statics_checks(ship, hull, st)
+    assert len(checks) >= 3
+    failed = [(c.check, c.value, c.tolerance) for c in checks if not c.passed]
+    assert not failed
+
+
+def test_gm_equals_gz_slope(results):
+    for _, _, st in results.values():
+        assert float(st.gm_from_gz_slope) == pytest.approx(float(st.gm), abs=1e-3)
+
+
+def test_inverted_ship_and_symmetry(results):
+    """GZ(180) = 0 and a symmetric hull has GZ(0) = 0; GZ has the right sign after vanishing."""
+    for _, _, st in results.values():
+        assert abs(float(st.gz.sel(heel=0))) < 1e-9
+        assert abs(float(st.gz.sel(heel=180))) < 1e-6
+    st = results["barge"][2]
+    assert float(st.heel_vanishing) == pytest.approx(75.1, abs=0.1)
+
+
+def test_lolling_ship_warns(ship_file):
+    ship = load_ship(ship_file("barge", loading={"draft": 6.0, "kg": 9.5}))
+    with pytest.warns(StabilityWarning, match="negative GM"):
+        st = compute_statics(ship, build_hull(ship))
+    assert float(st.gm) < 0
+
+
+def test_cannot_float(ship_file):
+    ship = load_ship(ship_file("barge", loading={"mass": 1025.0 * 30000, "kg": 6.0}))
+    with pytest.raises(StabflowError, match=r"barge.yaml: loading.mass: .*cannot float"):
+        compute_statics(ship, build_hull(ship))
+
+
+def test_draft_above_deck(ship_file):
+    ship = load_ship(ship_file("barge", loading={"draft": 13.0, "kg": 6.0}))
+    with pytest.raises(StabflowError, match="loading.draft"):
+        compute_statics(ship, build_hull(ship))
+
+
+def test_mass_loading_with_lcg_trims(ship_file):
+    """Off-centre LCG on the barge: trim moves B under G (free trim)."""
+    ship = load_ship(ship_file("barge", loading={"mass": 1025.0 * 12000, "lcg": 2.0, "kg": 6.0}))
+    st = compute_statics(ship, build_hull(ship))
+    # B vertically below/above G in earth axes: lcb - lcg = -tan(trim) (kb - kg)
+    th = float(st.trim_upright)
+    assert float(st.lcb) - 2.0 == pytest.approx(-np.tan(th) * (float(st.kb) - 6.0), abs=1e-6)
+    assert float(st.trim_upright) > 0  # bow down
+    assert float(st.volume) == pytest.approx(12000.0)

@@ -1,0 +1,40 @@
+# Config validation and helpers (no lambdas in rules).
+from pathlib import Path
+
+from snakemake.utils import validate
+
+from stabflow.config import load_ship
+
+
+validate(config, "../schemas/config.schema.yaml")
+
+SHIPS_DIR = config.get("ships_dir", "config/ships")
+RESULTS = config.get("results", "results")
+SHIPS = {name: load_ship(Path(SHIPS_DIR) / f"{name}.yaml") for name in config["ships"]}
+
+
+wildcard_constraints:
+    ship="|".join(SHIPS),
+
+
+def ship_yaml(wildcards):
+    """Path of the ship configuration file."""
+    return str(Path(SHIPS_DIR) / f"{wildcards.ship}.yaml")
+
+
+def hull_source(wildcards):
+    """The ship's hull file (mesh or offsets), if any, so edits re-run the hull step."""
+    ship = SHIPS[wildcards.ship]
+    return [str(ship.hull_file())] if "file" in ship.hull else []
+
+
+def per_ship(pattern):
+    """Expand a results pattern over every configured ship."""
+    return expand(pattern, ship=list(SHIPS), results=RESULTS)
+
+
+def all_outputs():
+    """Everything `snakemake -j2` builds."""
+    return per_ship("{results}/statics/{ship}.nc") + per_ship("{results}/statics/{ship}_gz.png") + per_ship(
+        "{results}/hull/{ship}_bodyplan.png"
+    ) + [f"{RESULTS}/report/html/index.html"]
