@@ -50,6 +50,19 @@ def run_statics(ship_yaml, hull_nc, out_nc, figure=None) -> xr.Dataset:
     return ds
 
 
+def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
+    """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
+    from .io import write_netcdf
+    from .validation import checks_dataset, statics_checks
+
+    ship = load_ship(ship_yaml)
+    with xr.open_dataset(hull_nc) as h, xr.open_dataset(statics_nc) as s:
+        hull, st = h.load(), s.load()
+    ds = checks_dataset(ship.name, "statics", statics_checks(ship, hull, st))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
 def _cmd_gz(args):
     from .hull import build_hull
     from .statics import compute_statics
@@ -79,6 +92,16 @@ def main(argv=None) -> int:
     s.add_argument("--hull", required=True)
     s.add_argument("-o", "--output", required=True)
     s.add_argument("--figure")
+    s = sub.add_parser("validate", help="statics validation checks → NetCDF")
+    s.add_argument("ship")
+    s.add_argument("--hull", required=True)
+    s.add_argument("--statics", required=True)
+    s.add_argument("-o", "--output", required=True)
+    s = sub.add_parser("report", help="build the HTML report from a results folder")
+    s.add_argument("--config", default="config/config.yaml")
+    s.add_argument("--results", default="results")
+    s.add_argument("--source", default="report")
+    s.add_argument("-o", "--output", default="results/report/html/index.html")
     s = sub.add_parser("gz", help="print particulars and the GZ table of a ship")
     s.add_argument("ship")
     s.add_argument("--every", type=float, default=10.0, help="print every N degrees")
@@ -90,6 +113,14 @@ def main(argv=None) -> int:
                 run_hull(args.ship, args.output, args.figure)
             elif args.cmd == "statics":
                 run_statics(args.ship, args.hull, args.output, args.figure)
+            elif args.cmd == "validate":
+                run_validate_statics(args.ship, args.hull, args.statics, args.output)
+            elif args.cmd == "report":
+                from .config import load_pipeline
+                from .report import build_report
+
+                cfg = load_pipeline(args.config)
+                build_report(args.results, cfg["ships"], cfg, args.source, args.output)
             elif args.cmd == "gz":
                 _cmd_gz(args)
     except StabflowError as exc:

@@ -30,11 +30,14 @@ def hull_source(wildcards):
 
 def per_ship(pattern):
     """Expand a results pattern over every configured ship."""
-    return expand(pattern, ship=list(SHIPS), results=RESULTS)
+    return expand(pattern, ship=list(SHIPS))
+
+
+def report_sources():
+    """Hand-written report pages (report/*.md, report/_config.yml)."""
+    return sorted(str(p) for p in Path("report").glob("*") if p.is_file())
 
 
 def all_outputs():
     """Everything `snakemake -j2` builds."""
-    return per_ship("{results}/statics/{ship}.nc") + per_ship("{results}/statics/{ship}_gz.png") + per_ship(
-        "{results}/hull/{ship}_bodyplan.png"
-    ) + [f"{RESULTS}/report/html/index.html"]
+    return per_ship(f"{RESULTS}/statics/{{ship}}.nc") + [f"{RESULTS}/report/html/index.html"]

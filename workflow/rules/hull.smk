@@ -8,5 +8,9 @@ rule hull:
         fig=f"{RESULTS}/hull/{{ship}}_bodyplan.png",
     log:
         f"{RESULTS}/logs/hull/{{ship}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/hull/{{ship}}.tsv"
+    conda:
+        "../envs/stabflow.yaml"
     script:
         "../scripts/hull.py"

@@ -8,5 +8,9 @@ rule statics:
         fig=f"{RESULTS}/statics/{{ship}}_gz.png",
     log:
         f"{RESULTS}/logs/statics/{{ship}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/statics/{{ship}}.tsv"
+    conda:
+        "../envs/stabflow.yaml"
     script:
         "../scripts/statics.py"

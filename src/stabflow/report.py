@@ -1,0 +1,153 @@
+"""Build the validation report (Jupyter Book 1.x) from the NetCDF results.
+
+The pages are MyST markdown generated here from ``results/``; the book only renders them
+(``execute_notebooks: off``), so building the report never re-runs a simulation.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from . import __version__
+
+PARTICULARS = ["volume", "mass", "draft_mid", "trim_upright", "lcb", "lcg", "kb", "bm", "km", "kg", "gm",
+               "waterplane_area", "gz_max", "heel_gz_max", "heel_vanishing"]
+
+
+def _open(path) -> xr.Dataset:
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def _fmt(v) -> str:
+    v = float(v)
+    if not np.isfinite(v):
+        return "–"
+    return f"{v:.4g}" if abs(v) < 1e5 else f"{v:.4e}"
+
+
+def _benchmarks(results: Path) -> list[tuple[str, float]]:
+    rows = []
+    for f in sorted((results / "benchmarks").rglob("*.tsv")):
+        with open(f) as fh:
+            rec = list(csv.DictReader(fh, delimiter="\t"))
+        if rec:
+            rows.append((str(f.relative_to(results / "benchmarks").with_suffix("")), float(rec[0]["s"])))
+    return rows
+
+
+def ship_page(name: str, results: Path, figdir: Path) -> str:
+    """MyST page for one ship: body plan, particulars, GZ."""
+    hull = _open(results / "hull" / f"{name}.nc")
+    st = _open(results / "statics" / f"{name}.nc")
+    for src in [results / "hull" / f"{name}_bodyplan.png", results / "statics" / f"{name}_gz.png"]:
+        shutil.copy(src, figdir / src.name)
+    lines = [f"# Ship: {name}", "", f"{hull.attrs.get('hull_source', '')} hull, {hull.sizes['station']} stations, "
+             f"enclosed hull volume {float(hull.hull_volume):.1f} m³.", ""]
+    lines += [
+        f":::{{figure}} figures/{name}_bodyplan.png", f":name: fig-{name}-bodyplan", "",
+        f"Body plan of {name}: the half contours of every station (aft body left, fore body right) as cut "
+        "from the hull and used for the Bonjean tables. Look for smooth, closed sections from keel to deck; "
+        "a missing or jagged section would point to a bad cut.", ":::", "",
+        "## Hydrostatic particulars (upright, free trim)", "", "| quantity | value | unit |", "|---|---:|---|",
+    ]
+    for k in PARTICULARS:
+        lines.append(f"| {st[k].attrs.get('long_name', k)} | {_fmt(st[k])} | {st[k].attrs.get('units', '')} |")
+    lines += [
+        "", "## Calm-water GZ", "",
+        f":::{{figure}} figures/{name}_gz.png", f":name: fig-{name}-gz", "",
+        f"Calm-water righting arm GZ of {name} from 0° to 180° heel with free trim (heave and trim in "
+        "equilibrium at every heel); the dotted line is GM·φ. Look for the initial slope matching GM, the "
+        "angle of maximum GZ and the angle of vanishing stability.", ":::", "",
+    ]
+    return "\n".join(lines)
+
+
+def validation_page(results: Path, ships: list[str]) -> tuple[str, int, int]:
+    """MyST page with every check as a row; returns (page, n_pass, n_fail)."""
+    rows, npass, nfail = [], 0, 0
+    for name in ships:
+        for f in sorted((results / "validation").glob(f"{name}_*.nc")):
+            ds = _open(f)
+            for i in range(ds.sizes["check"]):
+                ok = bool(ds.passed[i])
+                npass += ok
+                nfail += not ok
+                check = str(ds.name.values[i]).replace("|", "/")
+                rows.append(f"| {name} | {ds.attrs['step']} | {check} | {_fmt(ds.value[i])} | "
+                            f"≤ {_fmt(ds.tolerance[i])} | {ds.unit.values[i]} | {ds.reference.values[i]} | "
+                            f"{'PASS' if ok else '**FAIL**'} |")
+    page = ["# Validation summary", "",
+            f"{npass} checks pass, {nfail} fail. Every row is read from `results/validation/*.nc`, written by "
+            "the pipeline's validation rules; the value is the measured deviation from the reference and "
+            "the check passes when its magnitude is within the tolerance.", "",
+            "| ship | step | check | measured | tolerance | unit | reference | result |",
+            "|---|---|---|---:|---:|---|---|---|", *rows, ""]
+    return "\n".join(page), npass, nfail
+
+
+def overview_page(results: Path, ships: list[str], config: dict, npass: int, nfail: int) -> str:
+    import numba
+    import scipy
+
+    versions = {"stabflow": __version__, "python": platform.python_version(), "numpy": np.__version__,
+                "scipy": scipy.__version__, "numba": numba.__version__, "xarray": xr.__version__}
+    lines = ["# stabflow validation report", "",
+             "Ship stability from hull geometry to calm-water GZ, computed with the sectional (Bonjean) "
+             "machinery of the volume-based Froude-Krylov and hydrostatic method (paper 000).", "",
+             f"**Validation: {npass} PASS, {nfail} FAIL** — see the [validation summary](validation.md).", "",
+             "## What was run", "", f"Ships: {', '.join(ships)}.", "", "Pipeline configuration:", "", "```yaml"]
+    lines += [f"{k}: {v}" for k, v in config.items()]
+    lines += ["```", "", "## Software", "", "| package | version |", "|---|---|"]
+    lines += [f"| {k} | {v} |" for k, v in versions.items()]
+    bench = _benchmarks(results)
+    if bench:
+        lines += ["", "## Run time per job (Snakemake benchmark files)", "", "| job | wall time [s] |", "|---|---:|"]
+        lines += [f"| {k} | {v:.2f} |" for k, v in bench]
+    lines.append("")
+    return "\n".join(lines)
+
+
+def build_report(results: str | Path, ships: list[str], config: dict, source: str | Path, out_html: str | Path) -> Path:
+    """Generate the pages and build the HTML book; ``out_html`` is the final ``index.html`` path.
+
+    The book is built in a temporary folder and moved into place, so a failed build leaves nothing.
+    """
+    results = Path(results)
+    out_dir = Path(out_html).parent
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(dir=out_dir.parent) as tmp:
+        book = Path(tmp) / "book"
+        shutil.copytree(source, book, ignore=shutil.ignore_patterns("_build"))
+        figdir = book / "figures"
+        figdir.mkdir(exist_ok=True)
+        val, npass, nfail = validation_page(results, ships)
+        (book / "validation.md").write_text(val)
+        (book / "index.md").write_text(overview_page(results, ships, config, npass, nfail))
+        for s in ships:
+            (book / f"ship_{s}.md").write_text(ship_page(s, results, figdir))
+        toc = ["format: jb-book", "root: index", "parts:", "  - caption: Results", "    chapters:"]
+        toc += [f"      - file: ship_{s}" for s in ships]
+        toc += ["  - caption: Validation and methods", "    chapters:", "      - file: validation", "      - file: methods"]
+        (book / "_toc.yml").write_text("\n".join(toc) + "\n")
+        env = dict(os.environ, PYTHONHASHSEED="0")
+        r = subprocess.run([sys.executable, "-c", "from jupyter_book.cli.main import main; main()", "build", str(book), "--builder", "html"],
+                           capture_output=True, text=True, env=env)
+        if r.returncode != 0 or not (book / "_build" / "html" / "index.html").exists():
+            raise RuntimeError(f"jupyter-book build failed:\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}")
+        (book / "_build" / "build.log").write_text(r.stdout + r.stderr)
+        if out_dir.exists():
+            shutil.rmtree(out_dir)
+        shutil.move(str(book / "_build" / "html"), out_dir)
+        shutil.move(str(book / "_build" / "build.log"), out_dir / "build.log")
+    return Path(out_html)
