@@ -114,11 +114,15 @@ def _hull_volume(xs, dx, ys, zs, npts, a, b, c, out_sec):
 
 
 @njit(cache=True)
-def _calm_state(xs, dx, ys, zs, npts, phi, theta, h, xg, zg, work):
-    """Volume and earth-frame lever arms in calm water at heel phi, trim theta, heave h.
+def _hydro_state(xs, dx, ys, zs, npts, phi, theta, h, xg, zg, work, amp=0.0, k=0.0, xc=0.0):
+    """Volume and earth-frame lever arms at heel phi, trim theta, heave h, in calm water or on a
+    long-crested regular wave eta = amp cos(k (x_e - xc)) along the ship (quasi-static wave pass,
+    paper 002 eqs A12, A18-A19).
 
-    Body origin sits at earth height h; body z of calm waterline at station x:
-    cos(theta)(sin(phi) y + cos(phi) z) <= sin(theta) x - h.
+    Body origin sits at earth height h. A section point is wet when its earth height is below the
+    wave at the station's centreline (paper 000 step 2; no lateral slope along the ship):
+    cos(theta)(sin(phi) y + cos(phi) z) <= eta_i + sin(theta) x_i - h, with the wave evaluated at
+    the station's earth abscissa x_i cos(theta).
     Returns (V, dx_e, dy_e): volume and the earth-frame x and y of B minus those of G [m].
     """
     ct = np.cos(theta)
@@ -130,7 +134,8 @@ def _calm_state(xs, dx, ys, zs, npts, phi, theta, h, xg, zg, work):
     My = 0.0
     Mz = 0.0
     for i in range(xs.shape[0]):
-        A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp, ct * cp, st * xs[i] - h)
+        eta = amp * np.cos(k * (xs[i] * ct - xc)) if amp != 0.0 else 0.0
+        A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp, ct * cp, eta + st * xs[i] - h)
         work[i, 0] = A
         work[i, 1] = Sy
         work[i, 2] = Sz
@@ -153,7 +158,7 @@ def _calm_state(xs, dx, ys, zs, npts, phi, theta, h, xg, zg, work):
 
 
 @njit(cache=True)
-def _equilibrium(xs, dx, ys, zs, npts, phi, vol, xg, zg, h0, th0, tol, work):
+def _equilibrium(xs, dx, ys, zs, npts, phi, vol, xg, zg, h0, th0, tol, work, amp=0.0, k=0.0, xc=0.0):
     """Newton solve of heave h and trim theta for volume ``vol`` and B above G (free trim).
 
     Returns (h, theta, gz, iterations). ``gz`` = y_G - y_B in earth axes [m]. Damped steps keep
@@ -165,14 +170,14 @@ def _equilibrium(xs, dx, ys, zs, npts, phi, vol, xg, zg, h0, th0, tol, work):
     dh = 1e-6 * L
     dt = 1e-7
     it = 0
-    V, ex, ey = _calm_state(xs, dx, ys, zs, npts, phi, th, h, xg, zg, work)
+    V, ex, ey = _hydro_state(xs, dx, ys, zs, npts, phi, th, h, xg, zg, work, amp, k, xc)
     for it in range(100):
         f1 = (V - vol) / vol
         f2 = ex / L
         if abs(f1) < tol and abs(f2) < tol:
             break
-        Vh, exh, eyh = _calm_state(xs, dx, ys, zs, npts, phi, th, h + dh, xg, zg, work)
-        Vt, ext, eyt = _calm_state(xs, dx, ys, zs, npts, phi, th + dt, h, xg, zg, work)
+        Vh, exh, eyh = _hydro_state(xs, dx, ys, zs, npts, phi, th, h + dh, xg, zg, work, amp, k, xc)
+        Vt, ext, eyt = _hydro_state(xs, dx, ys, zs, npts, phi, th + dt, h, xg, zg, work, amp, k, xc)
         j11 = (Vh - V) / vol / dh
         j12 = (Vt - V) / vol / dt
         j21 = (exh - ex) / L / dh
@@ -199,7 +204,7 @@ def _equilibrium(xs, dx, ys, zs, npts, phi, vol, xg, zg, h0, th0, tol, work):
         for _ in range(30):
             hn = h + lam * sh
             tn = th + lam * st_
-            Vn, exn, eyn = _calm_state(xs, dx, ys, zs, npts, phi, tn, hn, xg, zg, work)
+            Vn, exn, eyn = _hydro_state(xs, dx, ys, zs, npts, phi, tn, hn, xg, zg, work, amp, k, xc)
             g1 = (Vn - vol) / vol
             g2 = exn / L
             if g1 * g1 + g2 * g2 < r0 or lam < 1e-6:
@@ -214,7 +219,7 @@ def _equilibrium(xs, dx, ys, zs, npts, phi, vol, xg, zg, h0, th0, tol, work):
 
 
 @njit(cache=True)
-def _gz_curve(xs, dx, ys, zs, npts, heels, vol, xg, zg, h0, th0, tol, out):
+def _gz_curve(xs, dx, ys, zs, npts, heels, vol, xg, zg, h0, th0, tol, out, amp=0.0, k=0.0, xc=0.0):
     """GZ at each heel with free trim, continuation from one heel to the next.
 
     ``out`` (nheel, 4) receives (gz, h, theta, iterations).
@@ -222,9 +227,9 @@ def _gz_curve(xs, dx, ys, zs, npts, heels, vol, xg, zg, h0, th0, tol, out):
     work = np.empty((xs.shape[0], 3))
     h = h0
     th = th0
-    for k in range(heels.shape[0]):
-        h, th, gz, it = _equilibrium(xs, dx, ys, zs, npts, heels[k], vol, xg, zg, h, th, tol, work)
-        out[k, 0] = gz
-        out[k, 1] = h
-        out[k, 2] = th
-        out[k, 3] = it
+    for j in range(heels.shape[0]):
+        h, th, gz, it = _equilibrium(xs, dx, ys, zs, npts, heels[j], vol, xg, zg, h, th, tol, work, amp, k, xc)
+        out[j, 0] = gz
+        out[j, 1] = h
+        out[j, 2] = th
+        out[j, 3] = it

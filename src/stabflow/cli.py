@@ -50,6 +50,77 @@ def run_statics(ship_yaml, hull_nc, out_nc, figure=None) -> xr.Dataset:
     return ds
 
 
+def _load_statics(ship_yaml, hull_nc, statics_nc):
+    ship = load_ship(ship_yaml)
+    with xr.open_dataset(hull_nc) as h, xr.open_dataset(statics_nc) as s:
+        return ship, h.load(), s.load()
+
+
+def run_waves(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, fig_gm=None, fig_gz=None) -> xr.Dataset:
+    """waves step: wave-pass GM(x_c), GZ(phi; x_c) and crest/trough/calm GZ → NetCDF + figures."""
+    import numpy as np
+
+    from .hull import Sections
+    from .io import write_netcdf
+    from .plots import gm_wave_pass, gz_curves
+    from .wavepass import crest_trough_calm, wave_pass
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    sec = Sections(hull)
+    V, lcg, kg, L = (float(st[k]) for k in ("volume", "lcg", "kg", "lwl"))
+    heel = np.round(np.arange(0.0, cfg["heel_max"] + 1e-9, cfg["heel_step"]), 10)
+    ds = wave_pass(sec, V, lcg, kg, L, cfg["wavelength_ratios"], cfg["steepness"], cfg["crest_positions"], heel)
+    ct = crest_trough_calm(sec, V, lcg, kg, L, cfg["crest_trough_steepness"], np.round(np.arange(0.0, 180.01, 1.0), 10))
+    ds = xr.merge([ds, ct.rename(heel="heel_full")], compat="override")
+    ds["heel_full"].attrs.update(units="degree", long_name="heel angle of the crest/trough/calm curves")
+    ds.attrs.update(ship=ship.name, lwl=L, kg=kg, crest_trough_steepness=cfg["crest_trough_steepness"])
+    if fig_gm:
+        gm_wave_pass(ds, fig_gm, float(st["gm"]), title=f"{ship.name}: GM as the wave crest passes")
+    if fig_gz:
+        s = cfg["crest_trough_steepness"]
+        gz_curves({"crest amidships": ct["gz_crest"], "trough amidships": ct["gz_trough"], "calm water": ct["gz_calm"]},
+                  fig_gz, title=f"{ship.name}: GZ on a wave λ = L, H/λ = {s:g}")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_early_stage(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, out_csv=None) -> xr.Dataset:
+    """early_stage step: GM_cr and metric C per sea state → NetCDF (+ CSV)."""
+    from .early_stage import assess
+    from .hull import Sections
+    from .io import atomic_text, write_netcdf
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    ds = assess(Sections(hull), *(float(st[k]) for k in ("volume", "lcg", "kg", "km", "lwl", "bwl")), cfg["sea_states"], cfg)
+    ds.attrs["ship"] = ship.name
+    if out_csv:
+        df = ds.to_dataframe().reset_index()
+        df.insert(0, "ship", ship.name)
+        atomic_text(df.to_csv(index=False, float_format="%.6g"), out_csv)
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_early_stage_summary(metric_ncs, out_csv, out_png):
+    """All ships' metric C in one CSV table and a bar chart (paper 002, Figure 6)."""
+    import pandas as pd
+
+    from .io import atomic_text
+    from .plots import metric_bars
+
+    frames = []
+    for f in metric_ncs:
+        with xr.open_dataset(f) as ds:
+            df = ds[["hs", "tm", "metric_c", "mean_tbc"]].to_dataframe().reset_index()
+            df.insert(0, "ship", ds.attrs["ship"])
+            df["gm_cr"] = float(ds["gm_cr"])
+            frames.append(df)
+    table = pd.concat(frames, ignore_index=True)
+    atomic_text(table.to_csv(index=False, float_format="%.6g"), out_csv)
+    metric_bars(table, out_png)
+    return table
+
+
 def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
     """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
     from .io import write_netcdf
@@ -59,6 +130,19 @@ def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
     with xr.open_dataset(hull_nc) as h, xr.open_dataset(statics_nc) as s:
         hull, st = h.load(), s.load()
     ds = checks_dataset(ship.name, "statics", statics_checks(ship, hull, st))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_waves(ship_yaml, hull_nc, statics_nc, waves_nc, metric_nc, es_cfg: dict, out_nc) -> xr.Dataset:
+    """validation of the waves and early-stage steps → NetCDF rows."""
+    from .io import write_netcdf
+    from .validation import checks_dataset, waves_checks
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    with xr.open_dataset(waves_nc) as w, xr.open_dataset(metric_nc) as m:
+        waves, metric = w.load(), m.load()
+    ds = checks_dataset(ship.name, "waves", waves_checks(ship, hull, st, waves, metric, es_cfg))
     write_netcdf(ds, out_nc)
     return ds
 
@@ -102,6 +186,13 @@ def main(argv=None) -> int:
     s.add_argument("--results", default="results")
     s.add_argument("--source", default="report")
     s.add_argument("-o", "--output", default="results/report/html/index.html")
+    for name, hlp in [("waves", "wave-pass GM/GZ"), ("early-stage", "early-stage metric C")]:
+        s = sub.add_parser(name, help=hlp)
+        s.add_argument("ship")
+        s.add_argument("--hull", required=True)
+        s.add_argument("--statics", required=True)
+        s.add_argument("--config", default="config/config.yaml")
+        s.add_argument("-o", "--output", required=True)
     s = sub.add_parser("gz", help="print particulars and the GZ table of a ship")
     s.add_argument("ship")
     s.add_argument("--every", type=float, default=10.0, help="print every N degrees")
@@ -113,6 +204,14 @@ def main(argv=None) -> int:
                 run_hull(args.ship, args.output, args.figure)
             elif args.cmd == "statics":
                 run_statics(args.ship, args.hull, args.output, args.figure)
+            elif args.cmd in ("waves", "early-stage"):
+                from .config import load_pipeline
+
+                cfg = load_pipeline(args.config)
+                if args.cmd == "waves":
+                    run_waves(args.ship, args.hull, args.statics, cfg["wave_pass"], args.output)
+                else:
+                    run_early_stage(args.ship, args.hull, args.statics, cfg["early_stage"], args.output)
             elif args.cmd == "validate":
                 run_validate_statics(args.ship, args.hull, args.statics, args.output)
             elif args.cmd == "report":

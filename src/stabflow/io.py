@@ -41,6 +41,31 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "gm": ("m", "transverse metacentric height, fluid-free"),
     "gm_from_gz_slope": ("m", "GM from the slope of the computed GZ curve at zero heel"),
     "waterplane_area": ("m2", "waterplane area"),
+    "lwl": ("m", "waterline length (slabs with a wet waterline)"),
+    "bwl": ("m", "maximum waterline breadth"),
+    # waves
+    "wavelength_ratio": ("1", "wave length over waterline length, lambda / L"),
+    "steepness": ("1", "wave steepness H / lambda"),
+    "crest_position": ("m", "wave crest position from midships, positive forward"),
+    "gm_wave": ("m", "metacentric height in waves, GM(x_c) (paper 002 eq. A24)"),
+    "kb_wave": ("m", "vertical centre of buoyancy in waves"),
+    "bm_wave": ("m", "transverse metacentric radius of the wave waterplane"),
+    "gz_wave": ("m", "righting arm in waves, free trim"),
+    "gz_crest": ("m", "righting arm with a crest amidships, lambda = L"),
+    "gz_trough": ("m", "righting arm with a trough amidships, lambda = L"),
+    "gz_calm": ("m", "righting arm in calm water"),
+    "sea_state": ("1", "sea state"),
+    "hs": ("m", "significant wave height"),
+    "tm": ("s", "modal wave period"),
+    "gm_cr": ("m", "critical GM: calm-water GZ maximum at the critical angle, not below the minimum GM"),
+    "kg_cr": ("m", "KG giving the critical GM"),
+    "roll_period": ("s", "roll period at the critical GM, 0.8 B / sqrt(GM_cr) (paper 002 eq. 11)"),
+    "mean_tbc": ("s", "mean time below critical GM (paper 002 eq. 10)"),
+    "metric_c": ("1", "early-stage assessment metric C = m(tbc) / T_phi (paper 002 eq. 11)"),
+    "weight_sum": ("1", "sum of the statistical weights W_ij over the assessment grid"),
+    "sigma_zeta": ("m", "standard deviation of wave elevation"),
+    "k1": ("rad/m", "mean wave number (paper 002 eq. 5)"),
+    "k2": ("rad/m", "spectral bandwidth wave number (paper 002 eq. 5)"),
     "gz_max": ("m", "maximum righting arm"),
     "heel_gz_max": ("degree", "heel angle of the maximum righting arm"),
     "heel_vanishing": ("degree", "angle of vanishing stability"),
@@ -98,6 +123,17 @@ def atomic_savefig(fig, path: str | Path, **kw) -> Path:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+    return path
+
+
+def atomic_text(text: str, path: str | Path) -> Path:
+    """Write a text file atomically."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    with os.fdopen(fd, "w") as fh:
+        fh.write(text)
+    os.replace(tmp, path)
     return path
 
 

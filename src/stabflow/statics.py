@@ -13,7 +13,7 @@ import numpy as np
 import xarray as xr
 
 from . import StabflowError
-from ._kernels import _calm_state, _equilibrium, _gz_curve
+from ._kernels import _hydro_state, _equilibrium, _gz_curve
 from .config import Ship
 from .hull import Sections
 from .io import annotate
@@ -28,7 +28,7 @@ class StabilityWarning(UserWarning):
 
 def _volume_at(sec: Sections, h: float, theta: float = 0.0, phi: float = 0.0):
     work = np.empty((len(sec.x), 3))
-    V, _, _ = _calm_state(*sec.args(), phi, theta, h, 0.0, 0.0, work)
+    V, _, _ = _hydro_state(*sec.args(), phi, theta, h, 0.0, 0.0, work)
     # body-frame centroid from the sectional sums
     A = work[:, 0] * sec.dx
     xb = float((A * sec.x).sum() / V) if V > 0 else 0.0
@@ -71,7 +71,7 @@ def equilibrium(sec: Sections, volume: float, lcg: float, kg: float, heel: float
         guess = _draft_guess(sec, volume)
     work = np.empty((len(sec.x), 3))
     h, th, gz, it = _equilibrium(*sec.args(), heel, volume, lcg, kg, guess[0], guess[1], TOL, work)
-    V, ex, _ = _calm_state(*sec.args(), heel, th, h, lcg, kg, work)
+    V, ex, _ = _hydro_state(*sec.args(), heel, th, h, lcg, kg, work)
     if abs(V - volume) > 1e-6 * volume or abs(ex) > 1e-6 * sec.length:
         raise StabflowError(f"no equilibrium found for volume {volume:.1f} m^3 and LCG {lcg:.2f} m")
     return h, th, gz
@@ -105,8 +105,10 @@ def particulars(sec: Sections, volume: float, lcg: float, kg: float, rho: float)
     it = float((2.0 / 3.0 * yw**3 * sec.dx).sum())
     bm = it / V
     km = zb + bm
+    wet = yw > 0
+    lwl = float(sec.dx[wet].sum()) if wet.any() else 0.0
     return {
-        "volume": V, "mass": rho * V, "draft_mid": -h / ct, "trim_upright": th,
+        "volume": V, "mass": rho * V, "draft_mid": -h / ct, "trim_upright": th, "lwl": lwl, "bwl": 2 * float(yw.max()),
         "lcb": xb, "lcg": lcg, "kb": zb, "kg": kg, "waterplane_area": awp, "bm": bm, "km": km, "gm": km - kg,
     }
 
@@ -123,7 +125,7 @@ def gz_curve(sec: Sections, volume: float, lcg: float, kg: float, heel_deg: np.n
     # verify every point converged
     work = np.empty((len(sec.x), 3))
     for k, phi in enumerate(heels):
-        V, ex, _ = _calm_state(*sec.args(), phi, out[k, 2], out[k, 1], lcg, kg, work)
+        V, ex, _ = _hydro_state(*sec.args(), phi, out[k, 2], out[k, 1], lcg, kg, work)
         if abs(V - volume) > 1e-6 * volume or abs(ex) > 1e-5 * sec.length:
             raise StabflowError(f"GZ: no equilibrium at heel {heel_deg[k]:.1f} deg")
     ds = xr.Dataset(

@@ -40,4 +40,8 @@ def report_sources():
 
 def all_outputs():
     """Everything `snakemake -j2` builds."""
-    return per_ship(f"{RESULTS}/statics/{{ship}}.nc") + [f"{RESULTS}/report/html/index.html"]
+    return (
+        per_ship(f"{RESULTS}/statics/{{ship}}.nc")
+        + per_ship(f"{RESULTS}/waves/{{ship}}.nc")
+        + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
+    )

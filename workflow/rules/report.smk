@@ -3,7 +3,10 @@ rule report:
     input:
         statics=per_ship(f"{RESULTS}/statics/{{ship}}.nc"),
         figures=per_ship(f"{RESULTS}/statics/{{ship}}_gz.png") + per_ship(f"{RESULTS}/hull/{{ship}}_bodyplan.png"),
-        validation=per_ship(f"{RESULTS}/validation/{{ship}}_statics.nc"),
+        waves=per_ship(f"{RESULTS}/waves/{{ship}}.nc"),
+        wave_figures=per_ship(f"{RESULTS}/waves/{{ship}}_gm.png") + per_ship(f"{RESULTS}/waves/{{ship}}_gz_waves.png"),
+        metric=f"{RESULTS}/waves/early_stage_C.csv",
+        validation=per_ship(f"{RESULTS}/validation/{{ship}}_statics.nc") + per_ship(f"{RESULTS}/validation/{{ship}}_waves.nc"),
         source=report_sources(),
     output:
         html=f"{RESULTS}/report/html/index.html",
