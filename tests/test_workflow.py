@@ -35,11 +35,17 @@ def test_netcdf_outputs(pipeline):
         with xr.open_dataset(pipeline / "validation" / f"{ship}_statics.nc") as ds:
             assert ds.passed.all()
         assert (pipeline / "hull" / f"{ship}_bodyplan.png").exists()
+        with xr.open_dataset(pipeline / "validation" / f"{ship}_waves.nc") as ds:
+            assert ds.passed.all()
+        with xr.open_dataset(pipeline / "waves" / f"{ship}.nc") as ds:
+            assert ds.gm_wave.attrs["units"] == "m" and "gz_crest" in ds
+    table = (pipeline / "waves" / "early_stage_C.csv").read_text().splitlines()
+    assert table[0].startswith("ship,sea_state") and len(table) == 1 + 2 * 2
 
 
 def test_report_has_chapters_and_validation_table(pipeline):
     html = pipeline / "report" / "html"
-    for page in ["index", "ship_barge", "ship_wigley", "validation", "methods"]:
+    for page in ["index", "ship_barge", "ship_wigley", "waves", "validation", "methods"]:
         assert (html / f"{page}.html").exists(), page
     val = (html / "validation.html").read_text()
     assert "<table" in val and "PASS" in val and "exact polygon clipping" in val

@@ -70,6 +70,65 @@ def ship_page(name: str, results: Path, figdir: Path) -> str:
         "equilibrium at every heel); the dotted line is GM·φ. Look for the initial slope matching GM, the "
         "angle of maximum GZ and the angle of vanishing stability.", ":::", "",
     ]
+    lines += waves_section(name, results, figdir)
+    return "\n".join(lines)
+
+
+def waves_section(name: str, results: Path, figdir: Path) -> list[str]:
+    """Wave-pass figures and the early-stage metric table for one ship (if computed)."""
+    wnc, mnc = results / "waves" / f"{name}.nc", results / "waves" / f"{name}_metric.nc"
+    if not (wnc.exists() and mnc.exists()):
+        return []
+    for src in [results / "waves" / f"{name}_gm.png", results / "waves" / f"{name}_gz_waves.png"]:
+        shutil.copy(src, figdir / src.name)
+    w = _open(wnc)
+    m = _open(mnc)
+    s = w.attrs["crest_trough_steepness"]
+    lines = [
+        "## Stability in waves (quasi-static wave pass)", "",
+        f":::{{figure}} figures/{name}_gm.png", f":name: fig-{name}-gm", "",
+        f"GM of {name} as a regular wave crest passes along the ship (free sinkage and trim, same displacement "
+        f"and LCB as in calm water), one line per wave length at the steepest wave of the sweep (H/λ = "
+        f"{float(w.steepness.max()):g}); dashed: calm water. Look for the drop of GM with the crest near "
+        "amidships and its rise with a trough amidships.", ":::", "",
+        f":::{{figure}} figures/{name}_gz_waves.png", f":name: fig-{name}-gzwaves", "",
+        f"GZ of {name} with the crest amidships, the trough amidships (λ = L, H/λ = {s:g}) and in calm water. "
+        "Look for the loss of righting arm on the crest and the gain in the trough.", ":::", "",
+        "## Early-stage assessment metric C (paper 002)", "",
+        f"Critical GM {float(m.gm_cr):.3f} m (calm-water GZ maximum at {m.attrs['critical_angle_deg']:g}°, not below "
+        f"the minimum), KG_cr {float(m.kg_cr):.3f} m, roll period T_φ = {float(m.roll_period):.2f} s; "
+        f"{m.attrs['speed_kn']:g} kn in following seas, {m.attrs['spectrum']} spectrum, wave pass at the "
+        f"{m.attrs['loading_kg']} KG.", "",
+        "| sea state | Hs [m] | Tm [s] | σ_ζ [m] | k1 [rad/m] | k2 [rad/m] | Σ W_ij (grid) | m(tbc) [s] | C [-] |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for i, ss in enumerate(m.sea_state.values):
+        lines.append(f"| {ss} | {_fmt(m.hs[i])} | {_fmt(m.tm[i])} | {_fmt(m.sigma_zeta[i])} | {_fmt(m.k1[i])} | "
+                     f"{_fmt(m.k2[i])} | {_fmt(m.weight_sum[i])} | {_fmt(m.mean_tbc[i])} | {_fmt(m.metric_c[i])} |")
+    lines.append("")
+    return lines
+
+
+def waves_page(results: Path, figdir: Path) -> str | None:
+    """Cross-ship page: table and bar chart of C (paper 002 Table 1 / Figure 6)."""
+    csv_path = results / "waves" / "early_stage_C.csv"
+    if not csv_path.exists():
+        return None
+    shutil.copy(results / "waves" / "early_stage_C.png", figdir / "early_stage_C.png")
+    with open(csv_path) as fh:
+        rec = list(csv.DictReader(fh))
+    states = list(dict.fromkeys(r["sea_state"] for r in rec))
+    ships = list(dict.fromkeys(r["ship"] for r in rec))
+    lines = ["# Stability change in waves: metric C", "",
+             ":::{figure} figures/early_stage_C.png", ":name: fig-metric-c", "",
+             "Early-stage assessment metric C = m(tbc)/T_φ for every ship and sea state (paper 002, Figure 6). "
+             "Larger C means longer exposure to GM below its critical level relative to the roll period; compare "
+             "the tumblehome and flared topside variants of the same underwater hull.", ":::", "",
+             "| ship | GM_cr [m] | " + " | ".join(states) + " |", "|---|---:|" + "---:|" * len(states)]
+    for sh in ships:
+        rr = [r for r in rec if r["ship"] == sh]
+        lines.append(f"| {sh} | {_fmt(rr[0]['gm_cr'])} | " + " | ".join(_fmt(r["metric_c"]) for r in rr) + " |")
+    lines.append("")
     return "\n".join(lines)
 
 
@@ -138,6 +197,10 @@ def build_report(results: str | Path, ships: list[str], config: dict, source: st
             (book / f"ship_{s}.md").write_text(ship_page(s, results, figdir))
         toc = ["format: jb-book", "root: index", "parts:", "  - caption: Results", "    chapters:"]
         toc += [f"      - file: ship_{s}" for s in ships]
+        wp = waves_page(results, figdir)
+        if wp:
+            (book / "waves.md").write_text(wp)
+            toc.append("      - file: waves")
         toc += ["  - caption: Validation and methods", "    chapters:", "      - file: validation", "      - file: methods"]
         (book / "_toc.yml").write_text("\n".join(toc) + "\n")
         env = dict(os.environ, PYTHONHASHSEED="0")
