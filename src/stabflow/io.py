@@ -29,7 +29,7 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "draft_mid": ("m", "draft at midships, earth-vertical, from the baseline"),
     "trim": ("rad", "trim angle at each heel (free trim), positive bow down"),
     "trim_upright": ("rad", "trim angle of the upright equilibrium, positive bow down"),
-    "heave": ("m", "earth height of the body origin (midships, baseline) above calm water"),
+    "heave": ("m", "earth height of the body origin (midships, baseline) above calm water; in time series, from equilibrium"),
     "volume": ("m3", "displaced volume"),
     "mass": ("kg", "displacement mass"),
     "lcb": ("m", "longitudinal centre of buoyancy from midships, positive forward"),
@@ -69,6 +69,17 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "gz_max": ("m", "maximum righting arm"),
     "heel_gz_max": ("degree", "heel angle of the maximum righting arm"),
     "heel_vanishing": ("degree", "angle of vanishing stability"),
+    # dynamics
+    "time": ("s", "time"),
+    "roll": ("rad", "roll angle, positive starboard down"),
+    "pitch": ("rad", "pitch angle from equilibrium trim, positive bow down"),
+    "roll_rate": ("rad/s", "roll rate"),
+    "pitch_rate": ("rad/s", "pitch rate"),
+    "heave_rate": ("m/s", "heave velocity, positive up"),
+    "fz": ("N", "vertical FK + hydrostatic force, earth axes"),
+    "mx": ("N m", "FK + hydrostatic roll moment about G, earth axes"),
+    "my": ("N m", "FK + hydrostatic pitch moment about G, earth axes"),
+    "mz": ("N m", "FK yaw moment about G, earth axes (paper 000 eq. 15)"),
     "hull_volume": ("m3", "total enclosed hull volume to the deck"),
 }
 

@@ -19,16 +19,30 @@ from .statics import TOL
 
 
 def wave_equilibrium(sec: Sections, volume, lcg, kg, amp, k, xc, guess=(None, None), heel=0.0):
-    """Free-floating equilibrium on the wave eta = amp cos(k (x - xc)): (h [m], theta [rad])."""
-    h0, th0 = guess
-    if h0 is None:
-        from .statics import _draft_guess
+    """Free-floating equilibrium on the wave eta = amp cos(k (x - xc)): (h [m], theta [rad]).
 
-        h0, th0 = _draft_guess(sec, volume)
+    Newton from ``guess`` (or the calm-water draft); if that stalls (very steep or long waves
+    need large trims), continuation in wave amplitude from calm water in steps of 1/8.
+    """
     work = np.empty((len(sec.x), 3))
-    h, th, _, _ = _equilibrium(*sec.args(), heel, volume, lcg, kg, h0, th0, TOL, work, amp, k, xc)
-    V, ex, _ = _hydro_state(*sec.args(), heel, th, h, lcg, kg, work, amp, k, xc)
-    if abs(V - volume) > 1e-6 * volume or abs(ex) > 1e-5 * sec.length:
+
+    def solve(a, h0, th0):
+        h, th, _, _ = _equilibrium(*sec.args(), heel, volume, lcg, kg, h0, th0, TOL, work, a, k, xc)
+        V, ex, _ = _hydro_state(*sec.args(), heel, th, h, lcg, kg, work, a, k, xc)
+        return h, th, abs(V - volume) <= 1e-6 * volume and abs(ex) <= 1e-5 * sec.length
+
+    from .statics import _draft_guess
+
+    calm = _draft_guess(sec, volume)
+    h0, th0 = guess if guess[0] is not None else calm
+    h, th, ok = solve(amp, h0, th0)
+    if not ok:
+        h, th = calm
+        for a in amp * np.arange(1, 9) / 8.0:
+            h, th, ok = solve(a, h, th)
+            if not ok:
+                break
+    if not ok:
         raise StabflowError(f"no equilibrium on the wave (amplitude {amp:.2f} m, k {k:.4f} rad/m, crest {xc:.1f} m)")
     return h, th
 
@@ -48,12 +62,14 @@ def wave_gm(sec: Sections, volume, lcg, kg, amp, k, xc, guess=(None, None)):
 
 
 def wave_gz(sec: Sections, volume, lcg, kg, amp, k, xc, heel_deg, guess=(None, None)) -> np.ndarray:
-    """GZ(phi; x_c) [m] with free trim on the wave, at heels ``heel_deg`` [degree]."""
+    """GZ(phi; x_c) [m] with free trim on the wave, at heels ``heel_deg`` [degree] (NaN where no
+    equilibrium was found)."""
     heels = np.radians(np.asarray(heel_deg, dtype=np.float64))
     h0, th0 = wave_equilibrium(sec, volume, lcg, kg, amp, k, xc, guess, heel=float(heels[0]))
     out = np.empty((len(heels), 4))
     _gz_curve(*sec.args(), heels, volume, lcg, kg, h0, th0, TOL, out, amp, k, xc)
-    return out[:, 0]
+    # a heel whose Newton iteration ran out (99 iterations) is reported as NaN, never as a number
+    return np.where(out[:, 3] < 99, out[:, 0], np.nan)
 
 
 def wave_pass(sec: Sections, volume, lcg, kg, lwl, ratios, steepness, n_crest, heel_deg) -> xr.Dataset:

@@ -1,0 +1,62 @@
+"""Incident-wave kinematics at the stations of a ship moving at constant speed and heading.
+
+Long-crested linear waves: component n has amplitude a_n [m], frequency w_n [rad/s], wave number
+k_n = w_n^2 / g [rad/m] and phase e_n. Heading beta: 0 = following seas (waves travel along +x with
+the ship), 90 deg = waves travelling to port (beam seas from starboard), 180 deg = head seas.
+Station i sits at earth (X, Y) = (U t + x_i, 0), so psi_n = k_n x_i cos(beta) - (w_n - k_n U cos beta) t + e_n
+(encounter frequency) and
+
+    eta = sum a cos(psi),  eta_x = -sum a k cos(beta) sin(psi),  eta_y = -sum a k sin(beta) sin(psi).
+
+d2(phi0)/dz dt at the surface is -g sum k a cos(psi) (Wheeler stretching). Its linear extrapolation
+over the section depth (paper 000 eq. 4) grows without bound for short waves; stabflow uses it
+averaged over the section's calm-water depth T_i with the exact exponential decay,
+s_n = (1 - exp(-k_n T_i)) / (k_n T_i): s -> 1 for long waves (the seed's term) and the term
+stays bounded, -> g a / T_i, for short ones.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+G = 9.80665  # [m/s^2]
+
+
+def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None, chunk=4096) -> np.ndarray:
+    """(nt, nst, 4) table of (eta, eta_x, eta_y, dphi_zt) at stations ``xs`` and ``times``.
+
+    ``depth`` (nst,) are the sections' calm-water mean depths [m] for the d2phi/dzdt term;
+    None switches the term off (zeros).
+    """
+    amp = np.asarray(amp, float)
+    omega = np.asarray(omega, float)
+    phase = np.asarray(phase, float)
+    k = omega**2 / G
+    beta = np.radians(heading_deg)
+    cb, sb = np.cos(beta), np.sin(beta)
+    we = omega - k * speed * cb
+    times = np.asarray(times, float)
+    out = np.empty((len(times), len(xs), 4))
+    kx = (k * cb)[None, :] * np.asarray(xs, float)[:, None]  # (nst, nc)
+    if depth is not None:
+        kt = k[None, :] * np.maximum(np.asarray(depth, float)[:, None], 1e-9)
+        smith = np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0)  # (nst, nc)
+    for j0 in range(0, len(times), chunk):
+        t = times[j0 : j0 + chunk]
+        psi = kx[None, :, :] - we[None, None, :] * t[:, None, None] + phase[None, None, :]
+        c = np.cos(psi)
+        s = np.sin(psi)
+        out[j0 : j0 + chunk, :, 0] = c @ amp
+        out[j0 : j0 + chunk, :, 1] = -(s @ (amp * k)) * cb
+        out[j0 : j0 + chunk, :, 2] = -(s @ (amp * k)) * sb
+        if depth is None:
+            out[j0 : j0 + chunk, :, 3] = 0.0
+        else:
+            out[j0 : j0 + chunk, :, 3] = -G * np.einsum("tsn,sn,n->ts", c, smith, amp * k)
+    return out
+
+
+def regular(height: float, wavelength: float):
+    """One regular component (amp, omega, phase) for height H [m] and length lambda [m]."""
+    k = 2 * np.pi / wavelength
+    return np.array([0.5 * height]), np.array([np.sqrt(G * k)]), np.array([0.0])
