@@ -154,20 +154,29 @@ def simplify(pts: np.ndarray, tol: float) -> np.ndarray:
 def apply_topside(contour: np.ndarray, z_start: float, angle_deg: float) -> np.ndarray:
     """Replace the side above ``z_start`` by a straight topside at ``angle_deg`` from vertical.
 
-    Positive angles flare outward, negative give tumblehome. The deck height is kept.
+    Above z_start the half-breadth is y(z) = y(z_start) + (z - z_start) tan(angle), >= 0, up to the
+    section's own deck height: positive angles flare outward, negative give tumblehome. A section
+    that does not reach down to z_start (overhangs at the ends) has y(z_start) = 0, so the rule is
+    continuous along the ship.
     """
     y, z = contour[:, 0], contour[:, 1]
     ztop = z[-1]
-    if z_start >= ztop or z_start <= z[0]:
+    if z_start >= ztop:
         return contour
-    side = slice(0, len(z) - 1)  # exclude the closing centreline deck point
-    ys, zs = y[side], z[side]
-    k = np.searchsorted(zs, z_start, side="right")
-    y0 = float(np.interp(z_start, zs, ys)) if k < len(zs) else float(ys[-1])
-    lower = contour[:k][contour[:k, 1] < z_start]
     t = np.tan(np.radians(angle_deg))
+    side_y, side_z = y[:-1], z[:-1]  # exclude the closing centreline deck point
+    if z_start <= z[0]:
+        y0 = 0.0
+        lower = np.array([[0.0, z_start]])
+    else:
+        k = int(np.searchsorted(side_z, z_start, side="right"))
+        y0 = float(np.interp(z_start, side_z, side_y)) if k < len(side_z) else float(side_y[-1])
+        lower = np.vstack([contour[:k][contour[:k, 1] < z_start], [[y0, z_start]]])
     ydeck = max(y0 + (ztop - z_start) * t, 0.0)
-    new = np.vstack([lower, [[y0, z_start], [ydeck, ztop], [0.0, ztop]]])
+    if ydeck == 0.0 and y0 == 0.0:  # tumblehome on a section with no breadth at z_start: nothing above
+        new = lower if len(lower) > 1 else np.array([[0.0, z_start], [0.0, z_start + 1e-9]])
+        return simplify(new, 0.0) if len(new) > 2 else new
+    new = np.vstack([lower, [[ydeck, ztop], [0.0, ztop]]])
     return simplify(new, 0.0)
 
 

@@ -1,0 +1,115 @@
+"""3-DOF time-domain model: rest, roll decay, capsize, and the pressure-integration reference."""
+
+import numpy as np
+import pytest
+import trimesh
+
+from stabflow.config import load_ship
+from stabflow.dynamics import coefficients, simulate
+from stabflow.dynamics.pressure import PressureModel, simulate_pressure
+from stabflow.hull import Sections, build_hull
+from stabflow.statics import compute_statics, equilibrium
+from stabflow.waves.synthesis import regular, station_wave_table
+
+from ..conftest import SHIPS
+
+CALM = (np.array([]), np.array([]), np.array([]))
+
+
+@pytest.fixture(scope="module")
+def barge():
+    ship = load_ship(SHIPS / "barge.yaml")
+    hull = build_hull(ship)
+    st = compute_statics(ship, hull)
+    sec = Sections(hull)
+    return ship, sec, st, coefficients(ship, sec, st)
+
+
+@pytest.mark.parametrize("name", ["barge", "dtmb5415"])
+def test_calm_water_rest(name):
+    ship = load_ship(SHIPS / f"{name}.yaml")
+    hull = build_hull(ship)
+    st = compute_statics(ship, hull)
+    sec = Sections(hull)
+    ds = simulate(sec, st, coefficients(ship, sec, st), ship.rho, CALM, 0.0, 0.0, 600.0, 0.1)
+    assert np.abs(ds["heave"]).max() < 1e-6
+    assert np.abs(ds["roll"]).max() < 1e-6
+    assert np.abs(ds["pitch"]).max() < 1e-6
+
+
+def test_roll_decay_period_and_decrement(barge):
+    ship, sec, st, co = barge
+    ds = simulate(sec, st, co, ship.rho, CALM, 0.0, 0.0, 150.0, 0.05, phi0=np.radians(1.0))
+    r, t = ds["roll"].values, ds["time"].values
+    pk = [i for i in range(1, len(r) - 1) if r[i] > r[i - 1] and r[i] >= r[i + 1]]
+    # period from parabolic peak times
+    tp = []
+    for i in pk:
+        d = r[i - 1] - 2 * r[i] + r[i + 1]
+        tp.append(t[i] + 0.5 * (r[i - 1] - r[i + 1]) / d * (t[1] - t[0]))
+    T = np.diff(tp).mean()
+    Tn = 2 * np.pi * np.sqrt((co.i44 + co.a44) / (ship.rho * 9.80665 * float(st.volume) * float(st.gm)))
+    zeta = co.b44 / (2 * np.sqrt((co.i44 + co.a44) * co.c44))
+    assert T == pytest.approx(Tn / np.sqrt(1 - zeta**2), rel=0.01)
+    assert T == pytest.approx(Tn, rel=0.01)
+    logdec = np.log(r[pk][:-1] / r[pk][1:]).mean()
+    assert logdec == pytest.approx(2 * np.pi * zeta / np.sqrt(1 - zeta**2), rel=0.01)
+
+
+def test_capsize_stops_cleanly(ship_file):
+    ship = load_ship(ship_file("barge", loading={"draft": 6.0, "kg": 11.0}))
+    hull = build_hull(ship)
+    with pytest.warns(UserWarning):
+        st = compute_statics(ship, hull)
+    sec = Sections(hull)
+    co = coefficients(ship, sec, st)
+    ds = simulate(sec, st, co, ship.rho, CALM, 0.0, 0.0, 300.0, 0.05, phi0=np.radians(5.0), phi_cap_deg=90.0)
+    assert ds.attrs["capsized"] == 1
+    assert 0 < ds.attrs["capsize_time"] < 300.0
+    assert np.all(np.isfinite(ds["roll"])) and abs(float(ds["roll"][-1])) > np.radians(90)
+
+
+def test_wave_table_regular():
+    amp, w, ph = regular(2.0, 100.0)
+    tab = station_wave_table(amp, w, ph, np.array([0.0, 25.0]), 90.0, 0.0, np.array([0.0]))
+    k = 2 * np.pi / 100.0
+    assert tab[0, 0, 0] == pytest.approx(1.0)  # crest at x = 0, t = 0
+    assert tab[0, 0, 2] == pytest.approx(0.0, abs=1e-12)
+    assert tab[0, 1, 0] == pytest.approx(1.0)  # beam seas: no variation along x
+    tab = station_wave_table(amp, w, ph, np.array([25.0]), 0.0, 0.0, np.array([0.0]), depth=np.array([6.0]))
+    assert tab[0, 0, 1] == pytest.approx(-1.0 * k * np.sin(k * 25.0))
+    smith = (1 - np.exp(-k * 6.0)) / (k * 6.0)
+    assert tab[0, 0, 3] == pytest.approx(-9.80665 * k * np.cos(k * 25.0) * smith)
+
+
+def test_volume_vs_pressure_integration_barge_quartering(barge):
+    """Seed Figs 5-6: box barge, quartering regular waves lambda = L, H = T/3, decay off:
+    roll and pitch amplitudes of the volume-based model within 5 % of pressure integration."""
+    ship, sec, st, co = barge
+    m = trimesh.creation.box(extents=[100, 20, 12])
+    m.apply_translation([0, 0, 6])
+    v, f = trimesh.remesh.subdivide_to_size(m.vertices, m.faces, max_edge=4.0)
+    h0, th0, _ = equilibrium(sec, float(st.volume), 0.0, float(st.kg))
+    W = regular(2.0, 100.0)
+    pm = PressureModel(v, f, ship.rho, 0.0, float(st.kg), W, 45.0, 0.0, decay=False)
+    t, s = simulate_pressure(pm, co, h0, th0, 160.0, 0.1)
+    ds = simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 160.0, 0.1)
+    last = t > 100
+    for name, i in [("heave", 0), ("roll", 1), ("pitch", 2)]:
+        ref = 0.5 * np.ptp(s[last, i])
+        ours = 0.5 * np.ptp(ds[name].values[last])
+        assert ours == pytest.approx(ref, rel=0.05), name
+
+
+def test_pressure_reference_hydrostatics(barge):
+    """Calm water: pressure integration on the mesh gives buoyancy = weight and no moments."""
+    ship, sec, st, co = barge
+    m = trimesh.creation.box(extents=[100, 20, 12])
+    m.apply_translation([0, 0, 6])
+    pm = PressureModel(m.vertices, m.faces, ship.rho, 0.0, float(st.kg), CALM, 0.0, 0.0)
+    loads = pm.loads(0.0, -6.0, 0.0, 0.0)
+    assert loads[2] == pytest.approx(co.mass * 9.80665, rel=1e-12)
+    assert np.abs(loads[3:]).max() < 1e-3 * loads[2]
+    # heeled 10 deg: righting moment = -W GZ
+    h, th, gz = equilibrium(sec, float(st.volume), 0.0, float(st.kg), heel=np.radians(10))
+    assert pm.loads(0.0, h, np.radians(10), th)[3] == pytest.approx(-co.mass * 9.80665 * gz, rel=1e-6)
