@@ -39,6 +39,9 @@ def test_netcdf_outputs(pipeline):
             assert ds.passed.all()
         with xr.open_dataset(pipeline / "waves" / f"{ship}.nc") as ds:
             assert ds.gm_wave.attrs["units"] == "m" and "gz_crest" in ds
+        with xr.open_dataset(pipeline / "rao" / f"{ship}_sq.nc") as ds:
+            assert ds.roll_rao.attrs["units"] == "1" and ds.wavelength_ratio.size == 2
+            assert float(ds.heave_rao.max()) > 0.2
     table = (pipeline / "waves" / "early_stage_C.csv").read_text().splitlines()
     assert table[0].startswith("ship,sea_state") and len(table) == 1 + 2 * 2
 

@@ -121,6 +121,30 @@ def run_early_stage_summary(metric_ncs, out_csv, out_png):
     return table
 
 
+def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc, fig=None) -> xr.Dataset:
+    """rao step: regular-wave sweep of the time-domain model for one condition → NetCDF + figure."""
+    from .dynamics import coefficients
+    from .dynamics.rao import rao_sweep
+    from .early_stage import KNOT
+    from .hull import Sections
+    from .io import write_netcdf
+    from .plots import rao_curves
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    cond = {c["name"]: c for c in rao_cfg["conditions"]}[condition]
+    sec = Sections(hull)
+    co = coefficients(ship, sec, st)
+    ds = rao_sweep(sec, st, co, ship.rho, float(st["lwl"]), rao_cfg["wavelength_ratios"], rao_cfg["steepness"],
+                   cond["heading"], cond["speed_kn"] * KNOT, rao_cfg["dt"])
+    ds.attrs.update(ship=ship.name, condition=condition, roll_period=co.natural_period("roll"),
+                    heave_period=co.natural_period("heave"), pitch_period=co.natural_period("pitch"))
+    if fig:
+        rao_curves(ds, fig, title=f"{ship.name}, {condition}: heading {cond['heading']:g}°, {cond['speed_kn']:g} kn, "
+                   f"H/λ = {rao_cfg['steepness']:g}")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
 def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
     """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
     from .io import write_netcdf
@@ -193,6 +217,13 @@ def main(argv=None) -> int:
         s.add_argument("--statics", required=True)
         s.add_argument("--config", default="config/config.yaml")
         s.add_argument("-o", "--output", required=True)
+    s = sub.add_parser("rao", help="regular-wave sweep of the time-domain model")
+    s.add_argument("ship")
+    s.add_argument("--hull", required=True)
+    s.add_argument("--statics", required=True)
+    s.add_argument("--condition", required=True)
+    s.add_argument("--config", default="config/config.yaml")
+    s.add_argument("-o", "--output", required=True)
     s = sub.add_parser("gz", help="print particulars and the GZ table of a ship")
     s.add_argument("ship")
     s.add_argument("--every", type=float, default=10.0, help="print every N degrees")
@@ -212,6 +243,10 @@ def main(argv=None) -> int:
                     run_waves(args.ship, args.hull, args.statics, cfg["wave_pass"], args.output)
                 else:
                     run_early_stage(args.ship, args.hull, args.statics, cfg["early_stage"], args.output)
+            elif args.cmd == "rao":
+                from .config import load_pipeline
+
+                run_rao(args.ship, args.hull, args.statics, load_pipeline(args.config)["rao"], args.condition, args.output)
             elif args.cmd == "validate":
                 run_validate_statics(args.ship, args.hull, args.statics, args.output)
             elif args.cmd == "report":

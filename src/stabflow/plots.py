@@ -86,3 +86,18 @@ def metric_bars(table, path):
     fig.tight_layout()
     atomic_savefig(fig, path, dpi=120)
     plt.close(fig)
+
+
+def rao_curves(ds: xr.Dataset, path, title: str = ""):
+    """Heave/a, roll/(ka), pitch/(ka) against L/lambda (paper 000 Figures 7-9)."""
+    fig, axs = plt.subplots(1, 3, figsize=(11, 3.6))
+    x = 1.0 / ds["wavelength_ratio"]
+    for ax, v, lab in zip(axs, ["heave_rao", "roll_rao", "pitch_rao"], ["heave / a [-]", "roll / ka [-]", "pitch / ka [-]"]):
+        ax.plot(x, ds[v], "o-")
+        ax.set_xlabel("L / λ [-]")
+        ax.set_ylabel(lab)
+        ax.grid(alpha=0.3)
+    fig.suptitle(title)
+    fig.tight_layout()
+    atomic_savefig(fig, path, dpi=120)
+    plt.close(fig)

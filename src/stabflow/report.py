@@ -71,7 +71,30 @@ def ship_page(name: str, results: Path, figdir: Path) -> str:
         "angle of maximum GZ and the angle of vanishing stability.", ":::", "",
     ]
     lines += waves_section(name, results, figdir)
+    lines += rao_section(name, results, figdir)
     return "\n".join(lines)
+
+
+def rao_section(name: str, results: Path, figdir: Path) -> list[str]:
+    """Regular-wave response amplitudes of the time-domain model, one figure per condition."""
+    lines = []
+    for nc in sorted((results / "rao").glob(f"{name}_*.nc")):
+        ds = _open(nc)
+        if ds.attrs.get("ship") != name:
+            continue
+        cond = ds.attrs["condition"]
+        shutil.copy(nc.with_suffix(".png"), figdir / nc.with_suffix(".png").name)
+        if not lines:
+            lines += ["## Time-domain response in regular waves (3-DOF, volume-based FK + HS)", ""]
+        lines += [
+            f":::{{figure}} figures/{nc.with_suffix('.png').name}", f":name: fig-{name}-rao-{cond}", "",
+            f"{name}, condition {cond}: steady-state first-harmonic heave / a, roll / ka and pitch / ka against "
+            f"L/λ, heading {ds.attrs['heading_deg']:g}° (0 = following), speed {ds.attrs['speed']:.2f} m/s, "
+            f"H/λ = {ds.attrs['steepness']:g}. Natural periods: heave {ds.attrs['heave_period']:.1f} s, roll "
+            f"{ds.attrs['roll_period']:.1f} s, pitch {ds.attrs['pitch_period']:.1f} s. Look for heave/a → 1 in long "
+            "waves and the roll peak where the encounter period meets the roll period.", ":::", "",
+        ]
+    return lines
 
 
 def waves_section(name: str, results: Path, figdir: Path) -> list[str]:

@@ -13,8 +13,12 @@ RESULTS = config.get("results", "results")
 SHIPS = {name: load_ship(Path(SHIPS_DIR) / f"{name}.yaml") for name in config["ships"]}
 
 
+RAO_CONDITIONS = [c["name"] for c in config["rao"]["conditions"]]
+
+
 wildcard_constraints:
     ship="|".join(SHIPS),
+    condition="|".join(RAO_CONDITIONS),
 
 
 def ship_yaml(wildcards):
@@ -33,6 +37,11 @@ def per_ship(pattern):
     return expand(pattern, ship=list(SHIPS))
 
 
+def per_ship_condition(pattern):
+    """Expand a results pattern over every ship and RAO condition."""
+    return expand(pattern, ship=list(SHIPS), condition=RAO_CONDITIONS)
+
+
 def report_sources():
     """Hand-written report pages (report/*.md, report/_config.yml)."""
     return sorted(str(p) for p in Path("report").glob("*") if p.is_file())
@@ -43,5 +52,6 @@ def all_outputs():
     return (
         per_ship(f"{RESULTS}/statics/{{ship}}.nc")
         + per_ship(f"{RESULTS}/waves/{{ship}}.nc")
+        + per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc")
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )

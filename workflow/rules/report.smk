@@ -6,6 +6,7 @@ rule report:
         waves=per_ship(f"{RESULTS}/waves/{{ship}}.nc"),
         wave_figures=per_ship(f"{RESULTS}/waves/{{ship}}_gm.png") + per_ship(f"{RESULTS}/waves/{{ship}}_gz_waves.png"),
         metric=f"{RESULTS}/waves/early_stage_C.csv",
+        rao=per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc"),
         validation=per_ship(f"{RESULTS}/validation/{{ship}}_statics.nc") + per_ship(f"{RESULTS}/validation/{{ship}}_waves.nc"),
         source=report_sources(),
     output:
