@@ -19,40 +19,38 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._kernels import _wave_table
+
 G = 9.80665  # [m/s^2]
 
 
-def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None, chunk=4096) -> np.ndarray:
-    """(nt, nst, 4) table of (eta, eta_x, eta_y, dphi_zt) at stations ``xs`` and ``times``.
+def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None) -> np.ndarray:
+    """(nt, nst, 4) table of (eta, eta_x, eta_y, dphi_zt) at stations ``xs`` and equally spaced ``times``.
 
     ``depth`` (nst,) are the sections' calm-water mean depths [m] for the d2phi/dzdt term;
-    None switches the term off (zeros).
+    None switches the term off (zeros). Computed by phasor recurrence (``_wave_table``).
     """
-    amp = np.asarray(amp, float)
+    amp = np.ascontiguousarray(amp, dtype=float)
     omega = np.asarray(omega, float)
     phase = np.asarray(phase, float)
+    xs = np.asarray(xs, float)
+    times = np.asarray(times, float)
     k = omega**2 / G
     beta = np.radians(heading_deg)
     cb, sb = np.cos(beta), np.sin(beta)
     we = omega - k * speed * cb
-    times = np.asarray(times, float)
-    out = np.empty((len(times), len(xs), 4))
-    kx = (k * cb)[None, :] * np.asarray(xs, float)[:, None]  # (nst, nc)
+    t0 = times[0] if len(times) else 0.0
+    dt = times[1] - times[0] if len(times) > 1 else 0.0
+    if len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
+        raise ValueError("times must be equally spaced")
+    phase0 = np.ascontiguousarray((k * cb)[None, :] * xs[:, None] + phase[None, :] - we[None, :] * t0)
     if depth is not None:
         kt = k[None, :] * np.maximum(np.asarray(depth, float)[:, None], 1e-9)
-        smith = np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0)  # (nst, nc)
-    for j0 in range(0, len(times), chunk):
-        t = times[j0 : j0 + chunk]
-        psi = kx[None, :, :] - we[None, None, :] * t[:, None, None] + phase[None, None, :]
-        c = np.cos(psi)
-        s = np.sin(psi)
-        out[j0 : j0 + chunk, :, 0] = c @ amp
-        out[j0 : j0 + chunk, :, 1] = -(s @ (amp * k)) * cb
-        out[j0 : j0 + chunk, :, 2] = -(s @ (amp * k)) * sb
-        if depth is None:
-            out[j0 : j0 + chunk, :, 3] = 0.0
-        else:
-            out[j0 : j0 + chunk, :, 3] = -G * np.einsum("tsn,sn,n->ts", c, smith, amp * k)
+        smith = np.ascontiguousarray(np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0))
+    else:
+        smith = np.zeros((len(xs), len(amp)))
+    out = np.zeros((len(times), len(xs), 4))
+    _wave_table(amp, k, we, phase0, cb, sb, smith, depth is not None, G, dt, len(times), out)
     return out
 
 
