@@ -113,3 +113,31 @@ def test_pressure_reference_hydrostatics(barge):
     # heeled 10 deg: righting moment = -W GZ
     h, th, gz = equilibrium(sec, float(st.volume), 0.0, float(st.kg), heel=np.radians(10))
     assert pm.loads(0.0, h, np.radians(10), th)[3] == pytest.approx(-co.mass * 9.80665 * gz, rel=1e-6)
+
+
+def test_dphi_dzdt_option_moves_toward_pressure_with_decay(barge):
+    """The d2phi/dzdt term (off by default, seed eqs 9/11/12) brings heave and pitch from ~50 %
+    above pressure integration with the e^{kz} decay to within 6 % of it (barge, lambda = L,
+    H/lambda = 1/50, stern quartering); without it they match the decay-off integration instead."""
+    ship, sec, st, co = barge
+    h0, th0, _ = equilibrium(sec, float(st.volume), 0.0, float(st.kg))
+    m = trimesh.creation.box(extents=[100, 20, 12])
+    m.apply_translation([0, 0, 6])
+    v, f = trimesh.remesh.subdivide_to_size(m.vertices, m.faces, max_edge=4.0)
+    lam = 100.0
+    W = regular(lam / 50, lam)
+    we = np.sqrt(9.80665 * 2 * np.pi / lam)
+    Te = 2 * np.pi / we
+    from stabflow.dynamics.rao import first_harmonic
+
+    t, s = simulate_pressure(PressureModel(v, f, ship.rho, 0.0, float(st.kg), W, 45.0, 0.0, decay=True), co, h0, th0, 160.0, 0.1)
+    sel = t >= t[-1] - 5 * Te
+    ref = np.array([first_harmonic(t[sel], s[sel, i], we)[0] for i in (0, 2)])
+    out = {}
+    for dz in (False, True):
+        ds = simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 160.0, 0.1, dphi_dzdt=dz)
+        tt = ds.time.values
+        sl = tt >= tt[-1] - 5 * Te
+        out[dz] = np.array([first_harmonic(tt[sl], ds[n].values[sl], we)[0] for n in ("heave", "pitch")])
+    assert out[True] == pytest.approx(ref, rel=0.06)
+    assert np.all(out[False] > 1.3 * ref)
