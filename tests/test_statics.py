@@ -1,6 +1,5 @@
 """Calm-water statics against exact, independent and published results."""
 
-import warnings
 
 import numpy as np
 import pytest

@@ -137,8 +137,9 @@ def gz_curve(sec: Sections, volume: float, lcg: float, kg: float, heel_deg: np.n
 
 def curve_summary(gz: xr.DataArray) -> dict:
     """GZ maximum, its angle and the angle of vanishing stability (first downward zero crossing)."""
-    g = gz.values
     hd = gz["heel"].values
+    # round-off zeros (e.g. GZ(180 deg) of a ship stable to 180) count as zero
+    g = np.where(np.abs(gz.values) < 1e-9 * max(float(np.abs(gz.values).max()), 1e-12), 0.0, gz.values)
     k = int(np.argmax(g))
     vanish = np.nan
     for j in range(max(k, 1), len(g)):

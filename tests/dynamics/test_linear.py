@@ -4,25 +4,12 @@ import numpy as np
 import pytest
 import trimesh
 
-from stabflow.config import load_ship
-from stabflow.dynamics import coefficients, simulate
+from stabflow.dynamics import simulate
 from stabflow.dynamics.linear import fk_excitation, linear_response, stiffness_matrix
 from stabflow.dynamics.pressure import PressureModel
 from stabflow.dynamics.rao import first_harmonic, rao_sweep
-from stabflow.hull import Sections, build_hull
-from stabflow.statics import compute_statics, equilibrium
+from stabflow.statics import equilibrium
 from stabflow.waves.synthesis import G, regular
-
-from ..conftest import SHIPS
-
-
-@pytest.fixture(scope="module")
-def barge():
-    ship = load_ship(SHIPS / "barge.yaml")
-    hull = build_hull(ship)
-    st = compute_statics(ship, hull)
-    sec = Sections(hull)
-    return ship, sec, st, coefficients(ship, sec, st)
 
 
 def test_first_harmonic_exact():

@@ -16,15 +16,6 @@ from ..conftest import SHIPS
 CALM = (np.array([]), np.array([]), np.array([]))
 
 
-@pytest.fixture(scope="module")
-def barge():
-    ship = load_ship(SHIPS / "barge.yaml")
-    hull = build_hull(ship)
-    st = compute_statics(ship, hull)
-    sec = Sections(hull)
-    return ship, sec, st, coefficients(ship, sec, st)
-
-
 @pytest.mark.parametrize("name", ["barge", "dtmb5415"])
 def test_calm_water_rest(name):
     ship = load_ship(SHIPS / f"{name}.yaml")

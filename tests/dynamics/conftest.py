@@ -1,0 +1,18 @@
+import pytest
+
+from stabflow.config import load_ship
+from stabflow.dynamics import coefficients
+from stabflow.hull import Sections, build_hull
+from stabflow.statics import compute_statics
+
+from ..conftest import SHIPS
+
+
+@pytest.fixture(scope="module")
+def barge():
+    """The shipped box barge with its statics and default 3-DOF coefficients."""
+    ship = load_ship(SHIPS / "barge.yaml")
+    hull = build_hull(ship)
+    st = compute_statics(ship, hull)
+    sec = Sections(hull)
+    return ship, sec, st, coefficients(ship, sec, st)
