@@ -161,6 +161,8 @@ def validation_page(results: Path, ships: list[str]) -> tuple[str, int, int]:
     for name in ships:
         for f in sorted((results / "validation").glob(f"{name}_*.nc")):
             ds = _open(f)
+            if ds.attrs.get("ship") != name:  # e.g. dtmb5415_flare_* when listing dtmb5415
+                continue
             for i in range(ds.sizes["check"]):
                 ok = bool(ds.passed[i])
                 npass += ok
@@ -185,8 +187,10 @@ def overview_page(results: Path, ships: list[str], config: dict, npass: int, nfa
     versions = {"stabflow": __version__, "python": platform.python_version(), "numpy": np.__version__,
                 "scipy": scipy.__version__, "numba": numba.__version__, "xarray": xr.__version__}
     lines = ["# stabflow validation report", "",
-             "Ship stability from hull geometry to calm-water GZ, computed with the sectional (Bonjean) "
-             "machinery of the volume-based Froude-Krylov and hydrostatic method (paper 000).", "",
+             "Ship stability from hull geometry to calm-water GZ, stability in waves (wave-pass GM/GZ and the "
+             "early-stage metric C, paper 002) and 3-DOF time-domain response in regular waves, all computed "
+             "with the sectional (Bonjean) machinery of the volume-based Froude-Krylov and hydrostatic method "
+             "(paper 000).", "",
              f"**Validation: {npass} PASS, {nfail} FAIL** — see the [validation summary](validation.md).", "",
              "## What was run", "", f"Ships: {', '.join(ships)}.", "", "Pipeline configuration:", "", "```yaml"]
     lines += [f"{k}: {v}" for k, v in config.items()]
