@@ -56,7 +56,7 @@ def test_crest_below_trough_above_for_dtmb(dtmb):
     assert np.allclose(ct.gz_calm, st.gz.sel(heel=heel), atol=1e-6)
 
 
-def test_gm_converges_with_stations(dtmb):
+def test_gm_and_gz_converge_with_stations(dtmb):
     ship, sec, st, (V, lcg, kg, L) = dtmb
     sec2 = Sections(build_hull(_with_stations(ship, 2 * ship.hull["stations"])))
     k = 2 * np.pi / L
@@ -64,6 +64,11 @@ def test_gm_converges_with_stations(dtmb):
         a = wave_gm(sec, V, lcg, kg, 3.5, k, x)[0]
         b = wave_gm(sec2, V, lcg, kg, 3.5, k, x)[0]
         assert abs(a - b) < 0.02 * float(st.gm)
+    heel = np.arange(0.0, 61.0, 10.0)
+    for x in (0.0, 0.5 * L):
+        ga = wave_gz(sec, V, lcg, kg, 3.5, k, x, heel)
+        gb = wave_gz(sec2, V, lcg, kg, 3.5, k, x, heel)
+        assert np.abs(ga - gb).max() < 0.02 * float(st.gz_max)
 
 
 def test_sweep_dataset(dtmb):

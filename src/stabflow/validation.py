@@ -209,6 +209,11 @@ def waves_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset, waves: xr.Dataset
     b = np.array([wave_gm(sec2, V, lcg, kg, amp, k, x)[0] for x in xs])
     checks.append(Check("GM(x_c) change with stations doubled (lambda = L), / calm GM", 100 * np.abs(a - b).max() / abs(float(st["gm"])),
                         2.0, "%", "self-convergence"))
+    heel = np.arange(0.0, 61.0, 10.0)
+    ga = np.array([wave_gz(sec, V, lcg, kg, amp, k, x, heel) for x in (0.0, 0.5 * L)])
+    gb = np.array([wave_gz(sec2, V, lcg, kg, amp, k, x, heel) for x in (0.0, 0.5 * L)])
+    checks.append(Check("GZ(phi; x_c) change with stations doubled (crest / trough amidships, 0-60 deg), / GZmax",
+                        100 * float(np.nanmax(np.abs(ga - gb))) / gzmax, 2.0, "%", "self-convergence"))
     if ship.name == "dtmb5415":
         # paper 002: for a flared hull the crest amidships lowers GZ and the trough raises it;
         # measured as the largest violation (0 when the ordering holds at every heel 5-90 deg)
