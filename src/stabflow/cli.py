@@ -120,8 +120,32 @@ def run_early_stage_summary(metric_ncs, out_csv, out_png):
     return table
 
 
-def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc, fig=None) -> xr.Dataset:
-    """rao step: regular-wave sweep of the time-domain model for one condition → NetCDF + figure."""
+def run_hydro(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc) -> xr.Dataset:
+    """hydro step: Capytaine coefficients at the natural frequencies and linear peer RAOs → NetCDF."""
+    from .dynamics import coefficients
+    from .dynamics.hydro import bem_mesh, hydro_dataset
+    from .dynamics.linear import stiffness_matrix
+    from .dynamics.model import equilibrium
+    from .hull import Sections
+    from .io import write_netcdf
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    cond = {c["name"]: c for c in rao_cfg["conditions"]}[condition]
+    sec = Sections(hull)
+    co = coefficients(ship, sec, st)
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    C = stiffness_matrix(sec, ship.rho, float(st["lcg"]), float(st["kg"]), h0, th0)
+    ds = hydro_dataset(bem_mesh(ship), st, co, ship.rho, cond["heading"], float(st["lwl"]), rao_cfg["wavelength_ratios"], C)
+    ds.attrs.update(ship=ship.name, condition=condition, note="zero speed (Capytaine without forward speed)")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc, fig=None, hydro_nc=None) -> xr.Dataset:
+    """rao step: regular-wave sweep of the time-domain model for one condition → NetCDF + figure.
+
+    With ``hydro_nc`` (Capytaine) the added mass and damping come from it and its linear RAOs are
+    plotted beside the time-domain ones."""
     from .dynamics import coefficients
     from .dynamics.rao import rao_sweep
     from .early_stage import KNOT
@@ -132,13 +156,18 @@ def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_n
     ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
     cond = {c["name"]: c for c in rao_cfg["conditions"]}[condition]
     sec = Sections(hull)
-    co = coefficients(ship, sec, st)
+    hydro = None
+    if hydro_nc:
+        with xr.open_dataset(hydro_nc) as h:
+            hydro = h.load()
+    co = coefficients(ship, sec, st, hydro if ship.data["dynamics"]["hydro"] == "capytaine" else None)
     ds = rao_sweep(sec, st, co, ship.rho, float(st["lwl"]), rao_cfg["wavelength_ratios"], rao_cfg["steepness"],
                    cond["heading"], cond["speed_kn"] * KNOT, rao_cfg["dt"])
     ds.attrs.update(ship=ship.name, condition=condition, roll_period=co.natural_period("roll"),
-                    heave_period=co.natural_period("heave"), pitch_period=co.natural_period("pitch"))
+                    heave_period=co.natural_period("heave"), pitch_period=co.natural_period("pitch"),
+                    hydro=ship.data["dynamics"]["hydro"])
     if fig:
-        rao_curves(ds, fig, title=f"{ship.name}, {condition}: heading {cond['heading']:g}°, {cond['speed_kn']:g} kn, "
+        rao_curves(ds, fig, peer=hydro, title=f"{ship.name}, {condition}: heading {cond['heading']:g}°, {cond['speed_kn']:g} kn, "
                    f"H/λ = {rao_cfg['steepness']:g}")
     write_netcdf(ds, out_nc)
     return ds

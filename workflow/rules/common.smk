@@ -37,6 +37,13 @@ def per_ship(pattern):
     return expand(pattern, ship=list(SHIPS))
 
 
+def hydro_input(wildcards):
+    """The Capytaine results for ships whose dynamics.hydro is capytaine (none otherwise)."""
+    if SHIPS[wildcards.ship].data["dynamics"]["hydro"] == "capytaine":
+        return [f"{RESULTS}/hydro/{wildcards.ship}_{wildcards.condition}.nc"]
+    return []
+
+
 def per_ship_condition(pattern):
     """Expand a results pattern over every ship and RAO condition."""
     return expand(pattern, ship=list(SHIPS), condition=RAO_CONDITIONS)

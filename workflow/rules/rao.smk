@@ -4,6 +4,7 @@ rule rao:
         ship=ship_yaml,
         hull=f"{RESULTS}/hull/{{ship}}.nc",
         statics=f"{RESULTS}/statics/{{ship}}.nc",
+        hydro=hydro_input,
     output:
         nc=f"{RESULTS}/rao/{{ship}}_{{condition}}.nc",
         fig=f"{RESULTS}/rao/{{ship}}_{{condition}}.png",
@@ -17,3 +18,23 @@ rule rao:
         "../envs/stabflow.yaml"
     script:
         "../scripts/rao.py"
+
+
+rule hydro:
+    """Capytaine BEM: added mass and damping at the natural frequencies, linear peer RAOs."""
+    input:
+        ship=ship_yaml,
+        hull=f"{RESULTS}/hull/{{ship}}.nc",
+        statics=f"{RESULTS}/statics/{{ship}}.nc",
+    output:
+        nc=f"{RESULTS}/hydro/{{ship}}_{{condition}}.nc",
+    params:
+        cfg=config["rao"],
+    log:
+        f"{RESULTS}/logs/hydro/{{ship}}_{{condition}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/hydro/{{ship}}_{{condition}}.tsv"
+    conda:
+        "../envs/stabflow.yaml"
+    script:
+        "../scripts/hydro.py"

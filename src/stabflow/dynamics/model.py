@@ -66,9 +66,11 @@ def stiffness(sec: Sections, rho, xg, zg, h0, th0) -> tuple[float, float, float]
     return c33, c44, c55
 
 
-def coefficients(ship: Ship, sec: Sections, st: xr.Dataset) -> Coefficients:
+def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | None = None) -> Coefficients:
     """Coefficients from the ship's ``dynamics`` config (radii of gyration, added-mass fractions,
-    damping as fractions of critical at each mode's natural frequency)."""
+    damping as fractions of critical at each mode's natural frequency), or, with ``hydro`` (the
+    Capytaine dataset of ``dynamics.hydro``), added mass and radiation damping at the natural
+    frequencies plus the configured viscous roll damping."""
     d = ship.data.get("dynamics", {})
     rho = ship.rho
     mass = float(st["mass"])
@@ -86,6 +88,14 @@ def coefficients(ship: Ship, sec: Sections, st: xr.Dataset) -> Coefficients:
     def crit(m, c, zeta):
         return 2 * zeta * np.sqrt(max(m * c, 0.0))
 
+    if hydro is not None:
+        bv = crit(i44 + float(hydro["added_roll"]), c44, d.get("roll_damping_linear", 0.05))
+        return Coefficients(
+            mass=mass, a33=float(hydro["added_heave"]), i44=i44, a44=float(hydro["added_roll"]), i55=i55,
+            a55=float(hydro["added_pitch"]), b33=float(hydro["damping_heave"]), b44=float(hydro["damping_roll"]) + bv,
+            b44q=d.get("roll_damping_quadratic", 0.0) * (i44 + float(hydro["added_roll"])),
+            b55=float(hydro["damping_pitch"]), c33=c33, c44=c44, c55=c55,
+        )
     return Coefficients(
         mass=mass, a33=a33, i44=i44, a44=a44, i55=i55, a55=a55,
         b33=crit(mass + a33, c33, d.get("damping_heave", 0.2)),

@@ -1,0 +1,139 @@
+"""Wave-body coefficients and linear peer RAOs from Capytaine (BEM, linear potential flow).
+
+The hull mesh is placed at its calm-water equilibrium (earth frame, waterline z = 0), clipped to
+its immersed part, with rigid-body heave, roll and pitch about G. Added mass and radiation damping
+are taken at each mode's natural frequency, found by fixed-point iteration
+w = sqrt(C / (M + A(w))). Linear RAOs (Froude-Krylov + diffraction + radiation, stabflow's own
+hydrostatic stiffness and viscous roll damping) are the peer comparison for the time-domain model.
+Capytaine uses the e^{-i w t} convention; only amplitudes are compared.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..hull.meshprops import earth_vertices
+from ..io import annotate
+from ..statics import G
+
+DOFS = ["Heave", "Roll", "Pitch"]
+
+
+def bem_mesh(ship, max_faces: int = 20000):
+    """Triangle mesh for the BEM: the ship's STL (with its transform) or, for the box barge, a
+    box panelled at 4 m. Raises StabflowError for hulls without a usable mesh."""
+    import trimesh
+
+    from .. import StabflowError
+    from ..hull.mesh import load_mesh
+
+    h = ship.hull
+    if h["source"] == "box":
+        m = trimesh.creation.box(extents=[h["length"], h["breadth"], h["depth"]])
+        m.apply_translation([0, 0, 0.5 * h["depth"]])
+        v, f = trimesh.remesh.subdivide_to_size(m.vertices, m.faces, max_edge=4.0)
+        return trimesh.Trimesh(v, f, process=False)
+    if h["source"] != "mesh":
+        raise StabflowError(f"{ship.path}: hull.source: Capytaine needs a mesh or box hull, not {h['source']!r}")
+    tr = h.get("transform", {})
+    m = load_mesh(ship.hull_file(), tr.get("scale", 1.0), tr.get("flip_z", False), tr.get("translate", [0, 0, 0]))
+    if len(m.faces) > max_faces:
+        raise StabflowError(f"{ship.hull_file()}: {len(m.faces)} triangles is too many for a dense BEM (max {max_faces})")
+    return m
+
+
+def immersed_body(mesh, h0, th0, xg, zg):
+    """Capytaine FloatingBody of the immersed hull with heave/roll/pitch about G."""
+    import capytaine as cpt
+
+    cpt.set_logging("ERROR")
+    ve = earth_vertices(np.asarray(mesh.vertices, float), 0.0, th0, h0)
+    ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
+    body = cpt.FloatingBody(mesh=cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)),
+                            dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge)))
+    return body.immersed_part().with_only_dofs(DOFS)
+
+
+def radiation(body, omega, rho, solver=None):
+    """(A, B): 3x3 added mass and radiation damping for (heave, roll, pitch) at ``omega``."""
+    import capytaine as cpt
+
+    solver = solver or cpt.BEMSolver()
+    res = [solver.solve(cpt.RadiationProblem(body=body, radiating_dof=d, omega=omega, rho=rho, g=G)) for d in DOFS]
+    A = np.array([[r.added_mass[d] for r in res] for d in DOFS])
+    B = np.array([[r.radiation_damping[d] for r in res] for d in DOFS])
+    return A, B
+
+
+def excitation(body, omega, heading_deg, rho, solver=None) -> np.ndarray:
+    """Complex Froude-Krylov + diffraction force (heave, roll, pitch) per unit wave amplitude."""
+    import capytaine as cpt
+    from capytaine.bem.airy_waves import froude_krylov_force
+
+    solver = solver or cpt.BEMSolver()
+    pb = cpt.DiffractionProblem(body=body, omega=omega, wave_direction=np.radians(heading_deg), rho=rho, g=G)
+    res = solver.solve(pb)
+    fk = froude_krylov_force(pb)
+    return np.array([fk[d] + res.forces[d] for d in DOFS])
+
+
+def natural_coefficients(body, masses, stiff, rho, iterations=3) -> dict:
+    """A_jj, B_jj at each mode's natural frequency (fixed point on w = sqrt(C/(M + A)))."""
+    import capytaine as cpt
+
+    solver = cpt.BEMSolver()
+    out = {}
+    for j, mode in enumerate(["heave", "roll", "pitch"]):
+        a = 0.0
+        for _ in range(iterations):
+            w = np.sqrt(stiff[j] / (masses[j] + a))
+            r = solver.solve(cpt.RadiationProblem(body=body, radiating_dof=DOFS[j], omega=w, rho=rho, g=G))
+            a, b = r.added_mass[DOFS[j]], r.radiation_damping[DOFS[j]]
+        out[mode] = (float(np.sqrt(stiff[j] / (masses[j] + a))), a, b)
+    return out
+
+
+def hydro_dataset(mesh, st, co, rho, heading_deg, lwl, ratios, C) -> xr.Dataset:
+    """Coefficients at the natural frequencies and linear Capytaine RAOs over lambda/L."""
+    import capytaine as cpt
+
+    h0, th0, _ = equilibrium_state(st)
+    body = immersed_body(mesh, h0, th0, float(st["lcg"]), float(st["kg"]))
+    masses = [co.mass, co.i44, co.i55]
+    nat = natural_coefficients(body, masses, [C[0, 0], C[1, 1], C[2, 2]], rho)
+    solver = cpt.BEMSolver()
+    M = np.diag(masses)
+    rao = []
+    for r in ratios:
+        k = 2 * np.pi / (r * lwl)
+        w = np.sqrt(G * k)
+        A, B = radiation(body, w, rho, solver)
+        Bv = np.diag([0.0, co.b44, 0.0])  # viscous roll damping of the ship config
+        F = excitation(body, w, heading_deg, rho, solver)
+        X = np.linalg.solve(-w**2 * (M + A) - 1j * w * (B + Bv) + C, F)
+        a = 1.0
+        rao.append([abs(X[0]) / a, abs(X[1]) / (k * a), abs(X[2]) / (k * a)])
+    rao = np.array(rao)
+    ds = xr.Dataset(
+        {
+            "heave_rao": ("wavelength_ratio", rao[:, 0], {"units": "1", "long_name": "Capytaine linear heave / a"}),
+            "roll_rao": ("wavelength_ratio", rao[:, 1], {"units": "1", "long_name": "Capytaine linear roll / ka"}),
+            "pitch_rao": ("wavelength_ratio", rao[:, 2], {"units": "1", "long_name": "Capytaine linear pitch / ka"}),
+        },
+        coords={"wavelength_ratio": np.asarray(ratios, float)},
+        attrs={"heading_deg": heading_deg, "panels": int(body.mesh.nb_faces)},
+    )
+    for mode, (w, a, b) in nat.items():
+        ds[f"omega_{mode}"] = xr.DataArray(w, attrs={"units": "rad/s", "long_name": f"{mode} natural frequency"})
+        ds[f"added_{mode}"] = xr.DataArray(a, attrs={"units": "kg" if mode == "heave" else "kg m2",
+                                                      "long_name": f"{mode} added mass/inertia at its natural frequency"})
+        ds[f"damping_{mode}"] = xr.DataArray(b, attrs={"units": "N s/m" if mode == "heave" else "N m s",
+                                                        "long_name": f"{mode} radiation damping at its natural frequency"})
+    return annotate(ds)
+
+
+def equilibrium_state(st):
+    """Upright equilibrium (h, theta, 0) from a statics dataset (heel 0 row of the GZ curve)."""
+    s0 = st.sel(heel=0.0)
+    return float(s0["heave"]), float(s0["trim"]), 0.0
