@@ -91,8 +91,10 @@ def rao_section(name: str, results: Path, figdir: Path) -> list[str]:
             f"{name}, condition {cond}: steady-state first-harmonic heave / a, roll / ka and pitch / ka against "
             f"L/λ, heading {ds.attrs['heading_deg']:g}° (0 = following), speed {ds.attrs['speed']:.2f} m/s, "
             f"H/λ = {ds.attrs['steepness']:g}. Natural periods: heave {ds.attrs['heave_period']:.1f} s, roll "
-            f"{ds.attrs['roll_period']:.1f} s, pitch {ds.attrs['pitch_period']:.1f} s. Look for heave/a → 1 in long "
-            "waves and the roll peak where the encounter period meets the roll period.", ":::", "",
+            f"{ds.attrs['roll_period']:.1f} s, pitch {ds.attrs['pitch_period']:.1f} s; added mass and damping from "
+            f"{'Capytaine (dashed: Capytaine linear RAOs with full FK + diffraction + radiation, zero speed)' if ds.attrs.get('hydro') == 'capytaine' else 'the ship config'}. "
+            "Look for heave/a → 1 in long waves and the roll peak where the encounter period meets the roll period; "
+            "where the dashed curves depart, the simplified hydrodynamics (no diffraction) matter.", ":::", "",
         ]
     return lines
 
