@@ -90,30 +90,6 @@ def _section(ys, zs, n, a, b, c):
 
 
 @njit(cache=True)
-def _hull_volume(xs, dx, ys, zs, npts, a, b, c, out_sec):
-    """Integrate sections (slab rule: volume = area * dx at each station centre).
-
-    ``a``, ``b``, ``c`` are per-station half-plane coefficients. ``out_sec`` (nst, 3) receives the
-    sectional (area, ybar*area, zbar*area). Returns (V, Mx, My, Mz): volume [m^3] and its first
-    moments about the body axes [m^4].
-    """
-    V = 0.0
-    Mx = 0.0
-    My = 0.0
-    Mz = 0.0
-    for i in range(xs.shape[0]):
-        A, Sy, Sz = _section(ys[i], zs[i], npts[i], a[i], b[i], c[i])
-        out_sec[i, 0] = A
-        out_sec[i, 1] = Sy
-        out_sec[i, 2] = Sz
-        V += A * dx[i]
-        Mx += A * dx[i] * xs[i]
-        My += Sy * dx[i]
-        Mz += Sz * dx[i]
-    return V, Mx, My, Mz
-
-
-@njit(cache=True)
 def _hydro_state(xs, dx, ys, zs, npts, phi, theta, h, xg, zg, work, amp=0.0, k=0.0, xc=0.0):
     """Volume and earth-frame lever arms at heel phi, trim theta, heave h, in calm water or on a
     long-crested regular wave eta = amp cos(k (x_e - xc)) along the ship (quasi-static wave pass,

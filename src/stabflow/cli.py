@@ -135,7 +135,7 @@ def run_hydro(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out
     co = coefficients(ship, sec, st)
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
     C = stiffness_matrix(sec, ship.rho, float(st["lcg"]), float(st["kg"]), h0, th0)
-    ds = hydro_dataset(bem_mesh(ship), st, co, ship.rho, cond["heading"], float(st["lwl"]), rao_cfg["wavelength_ratios"], C)
+    ds = hydro_dataset(bem_mesh(ship), st, co, ship.rho, cond["heading"], float(st["lwl"]), rao_cfg["wavelength_ratios"], C, h0, th0)
     ds.attrs.update(ship=ship.name, condition=condition, note="zero speed (Capytaine without forward speed)")
     write_netcdf(ds, out_nc)
     return ds
@@ -238,20 +238,16 @@ def main(argv=None) -> int:
     s.add_argument("--results", default="results")
     s.add_argument("--source", default="report")
     s.add_argument("-o", "--output", default="results/report/html/index.html")
-    for name, hlp in [("waves", "wave-pass GM/GZ"), ("early-stage", "early-stage metric C")]:
+    for name, hlp in [("waves", "wave-pass GM/GZ"), ("early-stage", "early-stage metric C"),
+                      ("rao", "regular-wave sweep of the time-domain model")]:
         s = sub.add_parser(name, help=hlp)
         s.add_argument("ship")
         s.add_argument("--hull", required=True)
         s.add_argument("--statics", required=True)
         s.add_argument("--config", default="config/config.yaml")
         s.add_argument("-o", "--output", required=True)
-    s = sub.add_parser("rao", help="regular-wave sweep of the time-domain model")
-    s.add_argument("ship")
-    s.add_argument("--hull", required=True)
-    s.add_argument("--statics", required=True)
-    s.add_argument("--condition", required=True)
-    s.add_argument("--config", default="config/config.yaml")
-    s.add_argument("-o", "--output", required=True)
+        if name == "rao":
+            s.add_argument("--condition", required=True)
     s = sub.add_parser("gz", help="print particulars and the GZ table of a ship")
     s.add_argument("ship")
     s.add_argument("--every", type=float, default=10.0, help="print every N degrees")

@@ -7,7 +7,6 @@ import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-import numpy as np
 import xarray as xr
 
 #: name -> (units, long_name). Every variable stabflow writes takes its attributes from here.
@@ -85,14 +84,6 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
 }
 
 
-def cf(da: xr.DataArray, name: str | None = None) -> xr.DataArray:
-    """Attach ``units`` and ``long_name`` from :data:`CF_ATTRS` to ``da``."""
-    key = name or da.name
-    units, long_name = CF_ATTRS[key]
-    da.attrs.update(units=units, long_name=long_name)
-    return da
-
-
 def annotate(ds: xr.Dataset) -> xr.Dataset:
     """Attach CF attributes to every variable and coordinate of ``ds`` found in the table."""
     for name in list(ds.variables):
@@ -141,8 +132,3 @@ def atomic_text(text: str, path: str | Path) -> Path:
     with atomic_path(path) as tmp:
         Path(tmp).write_text(text)
     return Path(path)
-
-
-def as_float(a) -> np.ndarray:
-    """Contiguous float64 copy of ``a``."""
-    return np.ascontiguousarray(a, dtype=np.float64)

@@ -224,6 +224,18 @@ def waves_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset, waves: xr.Dataset
                             "m", "paper 002 (flared hull)"))
         checks.append(Check("trough amidships GZ above calm, 5-90 deg: violation max(GZ_calm - GZ_trough, 0)", max(above, 0.0), 0.0,
                             "m", "paper 002 (flared hull)"))
+    # the critical KG of the metric file puts the calm-water GZ maximum at the critical angle
+    from .early_stage import heel_of_gz_max
+    from .statics import gz_curve
+
+    hh = np.arange(0.0, 90.01, 0.5)
+    phi = heel_of_gz_max(gz_curve(sec, V, lcg, float(metric["kg_cr"]), hh)["gz"].values, hh)
+    if float(metric["gm_cr"]) > es_cfg["gm_min"] + 1e-9:
+        checks.append(Check("angle of GZ max at KG_cr vs critical angle", phi - es_cfg["critical_angle"], 0.1, "degree",
+                            "paper 002 definition of GM_cr"))
+    else:  # floored: even at GM = gm_min the GZ maximum lies at or beyond the critical angle
+        checks.append(Check("GM_cr floored: critical angle minus angle of GZ max at GM_min (violation if > 0)",
+                            max(es_cfg["critical_angle"] - phi, 0.0), 0.1, "degree", "paper 002 definition of GM_cr"))
     # statistical weights: the full (A, k) plane integrates to 1; the marginal of A is Rayleigh
     for ss in es_cfg["sea_states"]:
         S = spectrum(es_cfg["spectrum"], ss["hs"], ss["tm"])

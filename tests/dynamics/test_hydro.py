@@ -14,7 +14,7 @@ def hydro(barge):
     ship, sec, st, co = barge
     h0, th0, _ = equilibrium(sec, float(st.volume), 0.0, float(st.kg))
     C = stiffness_matrix(sec, ship.rho, 0.0, float(st.kg), h0, th0)
-    return hydro_dataset(bem_mesh(ship), st, co, ship.rho, 45.0, 100.0, [1.0, 10.0], C), C
+    return hydro_dataset(bem_mesh(ship), st, co, ship.rho, 45.0, 100.0, [1.0, 10.0], C, h0, th0), C
 
 
 def test_coefficients_at_natural_frequencies(barge, hydro):

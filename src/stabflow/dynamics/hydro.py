@@ -94,11 +94,11 @@ def natural_coefficients(body, masses, stiff, rho, iterations=3) -> dict:
     return out
 
 
-def hydro_dataset(mesh, st, co, rho, heading_deg, lwl, ratios, C) -> xr.Dataset:
-    """Coefficients at the natural frequencies and linear Capytaine RAOs over lambda/L."""
+def hydro_dataset(mesh, st, co, rho, heading_deg, lwl, ratios, C, h0, th0) -> xr.Dataset:
+    """Coefficients at the natural frequencies and linear Capytaine RAOs over lambda/L, for the hull
+    at its upright equilibrium (heave h0 [m], trim th0 [rad])."""
     import capytaine as cpt
 
-    h0, th0, _ = equilibrium_state(st)
     body = immersed_body(mesh, h0, th0, float(st["lcg"]), float(st["kg"]))
     masses = [co.mass, co.i44, co.i55]
     nat = natural_coefficients(body, masses, [C[0, 0], C[1, 1], C[2, 2]], rho)
@@ -132,8 +132,3 @@ def hydro_dataset(mesh, st, co, rho, heading_deg, lwl, ratios, C) -> xr.Dataset:
                                                         "long_name": f"{mode} radiation damping at its natural frequency"})
     return annotate(ds)
 
-
-def equilibrium_state(st):
-    """Upright equilibrium (h, theta, 0) from a statics dataset (heel 0 row of the GZ curve)."""
-    s0 = st.sel(heel=0.0)
-    return float(s0["heave"]), float(s0["trim"]), 0.0
