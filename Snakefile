@@ -1,5 +1,5 @@
 # stabflow: ship dynamic stability in irregular seas.
-# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> validation -> report.
+# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> validation -> report.
 
 
 configfile: "config/config.yaml"
@@ -10,6 +10,7 @@ include: "workflow/rules/hull.smk"
 include: "workflow/rules/statics.smk"
 include: "workflow/rules/waves.smk"
 include: "workflow/rules/rao.smk"
+include: "workflow/rules/ensemble.smk"
 include: "workflow/rules/validate.smk"
 include: "workflow/rules/report.smk"
 

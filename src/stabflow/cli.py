@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import sys
 import warnings
+from pathlib import Path
 
 import xarray as xr
 
@@ -199,6 +200,63 @@ def run_validate_waves(ship_yaml, hull_nc, statics_nc, waves_nc, metric_nc, es_c
     return ds
 
 
+def run_ensemble_shard(ship_yaml, cond: dict, shard: int, out_nc, threads: int = 1, hydro_nc=None, progress=True):
+    """ensemble step, one shard: records [shard * shard_records, ...) of condition ``cond`` → NetCDF."""
+    import numba
+
+    from .ensemble import build_model, run_shard
+    from .io import write_netcdf
+
+    ship = load_ship(ship_yaml)
+    hydro = None
+    if hydro_nc:
+        with xr.open_dataset(hydro_nc) as h:
+            hydro = h.load()
+    numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+    model = build_model(ship, cond, hydro)
+    n = int(cond["shard_records"])
+    recs = range(shard * n, min((shard + 1) * n, int(cond["records"])))
+    if len(recs) == 0:
+        raise StabflowError(f"ensemble {cond['name']}: shard {shard} is beyond records = {cond['records']}")
+    ds = run_shard(model, recs, progress=progress)
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_ensemble_merge(shard_ncs, out_nc, fig_distribution=None, fig_spectra=None, fig_samples=None):
+    """ensemble step, merge: shards → ensemble NetCDF + figures."""
+    from .ensemble import merge
+    from .io import write_netcdf
+    from .plots import response_spectra, roll_distribution, time_histories
+
+    shards = []
+    for p in shard_ncs:
+        with xr.open_dataset(p) as d:
+            shards.append(d.load())
+    ens = merge(shards)
+    a = ens.attrs
+    head = (f"{a['ship']} {a['condition']}: Hs {a['hs']:g} m, Tp {a['tp']:g} s, {a['speed_kn']:g} kn, "
+            f"heading {a['heading_deg']:g}°, {float(ens['exposure_hours']):.0f} h")
+    if fig_distribution:
+        roll_distribution(ens, fig_distribution, f"Roll distribution: {head}")
+    if fig_spectra:
+        response_spectra(ens, fig_spectra, f"Encounter spectra: {head}")
+    if fig_samples:
+        time_histories(ens, fig_samples, f"Sample records: {head}")
+    write_netcdf(ens, out_nc)
+    return ens
+
+
+def _ensemble_condition(config_path, key):
+    from .config import load_pipeline
+
+    cfg = load_pipeline(config_path)
+    conds = {f"{c['ship']}_{c['name']}": c for c in cfg.get("ensembles", [])}
+    if key not in conds:
+        raise StabflowError(f"{config_path}: ensembles: no condition {key!r} (have {sorted(conds)})")
+    return dict(conds[key], name=key), Path(cfg.get("ships_dir", "config/ships")) / f"{conds[key]['ship']}.yaml"
+
+
 def _cmd_gz(args):
     from .hull import build_hull
     from .statics import compute_statics
@@ -248,6 +306,17 @@ def main(argv=None) -> int:
         s.add_argument("-o", "--output", required=True)
         if name == "rao":
             s.add_argument("--condition", required=True)
+    s = sub.add_parser("ensemble-shard", help="simulate one shard of an irregular-sea ensemble")
+    s.add_argument("condition", help="<ship>_<name> of an ensembles entry")
+    s.add_argument("--shard", type=int, required=True)
+    s.add_argument("--config", default="config/config.yaml")
+    s.add_argument("--threads", type=int, default=1)
+    s.add_argument("--hydro")
+    s.add_argument("-o", "--output", required=True)
+    s = sub.add_parser("ensemble-merge", help="merge ensemble shards and draw the figures")
+    s.add_argument("shards", nargs="+")
+    s.add_argument("-o", "--output", required=True)
+    s.add_argument("--figures", help="folder for roll_distribution.png, spectra.png, time_histories.png")
     s = sub.add_parser("gz", help="print particulars and the GZ table of a ship")
     s.add_argument("ship")
     s.add_argument("--every", type=float, default=10.0, help="print every N degrees")
@@ -279,6 +348,13 @@ def main(argv=None) -> int:
 
                 cfg = load_pipeline(args.config)
                 build_report(args.results, cfg["ships"], cfg, args.source, args.output)
+            elif args.cmd == "ensemble-shard":
+                cond, ship_yaml = _ensemble_condition(args.config, args.condition)
+                run_ensemble_shard(ship_yaml, cond, args.shard, args.output, args.threads, args.hydro)
+            elif args.cmd == "ensemble-merge":
+                f = Path(args.figures) if args.figures else None
+                run_ensemble_merge(args.shards, args.output, *((f / "roll_distribution.png", f / "spectra.png",
+                                                                 f / "time_histories.png") if f else ()))
             elif args.cmd == "gz":
                 _cmd_gz(args)
     except StabflowError as exc:

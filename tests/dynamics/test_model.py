@@ -65,12 +65,12 @@ def test_wave_table_regular():
     tab = station_wave_table(amp, w, ph, np.array([0.0, 25.0]), 90.0, 0.0, np.array([0.0]))
     k = 2 * np.pi / 100.0
     assert tab[0, 0, 0] == pytest.approx(1.0)  # crest at x = 0, t = 0
-    assert tab[0, 0, 2] == pytest.approx(0.0, abs=1e-12)
+    assert tab[0, 0, 1] == pytest.approx(0.0, abs=1e-12)
     assert tab[0, 1, 0] == pytest.approx(1.0)  # beam seas: no variation along x
     tab = station_wave_table(amp, w, ph, np.array([25.0]), 0.0, 0.0, np.array([0.0]), depth=np.array([6.0]))
-    assert tab[0, 0, 1] == pytest.approx(-1.0 * k * np.sin(k * 25.0))
+    assert tab[0, 0, 1] == pytest.approx(-1.0 * k * np.sin(k * 25.0))  # following: eta_x = S
     smith = (1 - np.exp(-k * 6.0)) / (k * 6.0)
-    assert tab[0, 0, 3] == pytest.approx(-9.80665 * k * np.cos(k * 25.0) * smith)
+    assert tab[0, 0, 2] == pytest.approx(-9.80665 * k * np.cos(k * 25.0) * smith)
 
 
 def test_volume_vs_pressure_integration_barge_quartering(barge):

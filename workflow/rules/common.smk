@@ -16,9 +16,17 @@ SHIPS = {name: load_ship(Path(SHIPS_DIR) / f"{name}.yaml") for name in config["s
 RAO_CONDITIONS = [c["name"] for c in config["rao"]["conditions"]]
 
 
+ENSEMBLES = {f"{c['ship']}_{c['name']}": c for c in config["ensembles"]}
+for _key, _c in ENSEMBLES.items():
+    if _c["ship"] not in SHIPS:
+        raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")
+
+
 wildcard_constraints:
     ship="|".join(SHIPS),
     condition="|".join(RAO_CONDITIONS),
+    ens="|".join(ENSEMBLES) or "none",
+    shard=r"\d+",
 
 
 def ship_yaml(wildcards):
@@ -49,6 +57,36 @@ def per_ship_condition(pattern):
     return expand(pattern, ship=list(SHIPS), condition=RAO_CONDITIONS)
 
 
+def ensemble_condition(wildcards):
+    """The ensemble condition's config (with its key as name)."""
+    return dict(ENSEMBLES[wildcards.ens], name=wildcards.ens)
+
+
+def ensemble_ship_yaml(wildcards):
+    """Ship file of an ensemble condition."""
+    return str(Path(SHIPS_DIR) / f"{ENSEMBLES[wildcards.ens]['ship']}.yaml")
+
+
+def ensemble_hull_source(wildcards):
+    """Hull file of an ensemble condition's ship, if any."""
+    ship = SHIPS[ENSEMBLES[wildcards.ens]["ship"]]
+    return [str(ship.hull_file())] if "file" in ship.hull else []
+
+
+def ensemble_hydro(wildcards):
+    """Capytaine coefficients, when the condition's effective dynamics use them."""
+    c = ENSEMBLES[wildcards.ens]
+    dyn = dict(SHIPS[c["ship"]].data["dynamics"], **c.get("dynamics", {}))
+    return [f"{RESULTS}/hydro/{c['ship']}_{RAO_CONDITIONS[0]}.nc"] if dyn.get("hydro") == "capytaine" else []
+
+
+def ensemble_shards(wildcards):
+    """All shard files of an ensemble condition."""
+    c = ENSEMBLES[wildcards.ens]
+    n = -(-c["records"] // c["shard_records"])
+    return [f"{RESULTS}/ensemble/{wildcards.ens}/shard_{k}.nc" for k in range(n)]
+
+
 def report_sources():
     """Hand-written report pages (report/*.md, report/_config.yml)."""
     return sorted(str(p) for p in Path("report").glob("*") if p.is_file())
@@ -60,5 +98,6 @@ def all_outputs():
         per_ship(f"{RESULTS}/statics/{{ship}}.nc")
         + per_ship(f"{RESULTS}/waves/{{ship}}.nc")
         + per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc")
+        + [f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES]
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )

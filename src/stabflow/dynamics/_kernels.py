@@ -1,24 +1,111 @@
 """Numba kernels (private): volume-based FK + HS forces (paper 000 eqs 9, 11, 12, 15) and RK4.
 
 Wave input is precomputed at the stations (3-DOF: their earth positions are known beforehand,
-paper 000 section 3) on the half-step grid t_j = j dt / 2 as columns
-(eta, eta_x, eta_y, dphi_zt): elevation [m], longitudinal and lateral slopes [-] and the
-effective d2(phi0)/dz dt [m/s^2] (zero when that option is off).
+paper 000 section 3) on the half-step grid t_j = j dt / 2 as columns (eta, S[, dphi_zt]):
+elevation [m], slope along the direction of propagation S [-] (eta_x = cos(beta) S,
+eta_y = sin(beta) S for long-crested waves of heading beta) and, optionally, the effective
+d2(phi0)/dz dt [m/s^2].
+
+Sections are clipped exactly (``_section``) or, when tables are given (``tab.shape[0] > 0``), read
+from per-station tables of area and first moments over (effective heel psi, waterline distance d)
+built by the same exact clipping (``_build_tables``): the clipped area depends on the waterline
+only through its normal angle psi = atan2(a, b) and distance d = c / |(a, b)|.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from .._kernels import _section
 
 
 @njit(cache=True)
-def _fkhs(xs, dx, ys, zs, npts, rho, g, xg, zg, h, phi, theta, wave, out):
+def _build_tables(ys, zs, npts, tab, lim):
+    """Fill ``tab`` (nst, npsi, nu, 3) with (area, int y dA, int z dA) and ``lim`` (nst, npsi, 3)
+    with the waterline distances at which the section starts and ends being wet and (nu - 1) / span, for psi on
+    [0, pi] (npsi equal steps) and d on nu equal steps between those limits."""
+    nst, npsi, nu, _ = tab.shape
+    dpsi = np.pi / (npsi - 1)
+    for i in range(nst):
+        n = npts[i]
+        for j in range(npsi):
+            a = np.sin(j * dpsi)
+            b = np.cos(j * dpsi)
+            lo = np.inf
+            hi = -np.inf
+            for k in range(n):
+                for sgn in (-1.0, 1.0):
+                    p = sgn * a * ys[i, k] + b * zs[i, k]
+                    lo = min(lo, p)
+                    hi = max(hi, p)
+            lim[i, j, 0] = lo
+            lim[i, j, 1] = hi
+            lim[i, j, 2] = (nu - 1) / (hi - lo)
+            for m in range(nu):
+                d = lo + (hi - lo) * m / (nu - 1)
+                A, Sy, Sz = _section(ys[i], zs[i], n, a, b, d)
+                tab[i, j, m, 0] = A
+                tab[i, j, m, 1] = Sy
+                tab[i, j, m, 2] = Sz
+
+
+@njit(cache=True, inline="always")
+def _atan(x):
+    """arctan(x): Abramowitz & Stegun 4.4.49 polynomial (|error| < 2e-8 rad) for |x| <= 1."""
+    if abs(x) > 1.0:
+        return math.atan(x)
+    x2 = x * x
+    p = 0.0028662257
+    p = p * x2 - 0.0161657367
+    p = p * x2 + 0.0429096138
+    p = p * x2 - 0.0752896400
+    p = p * x2 + 0.1065626393
+    p = p * x2 - 0.1420889944
+    p = p * x2 + 0.1999355085
+    p = p * x2 - 0.3333314528
+    return x * (1.0 + p * x2)
+
+
+@njit(cache=True, inline="always")
+def _row(tab, lim, i, j, d, nu):
+    """Linear read of table row (i, j) at waterline distance d: (area, int y dA, int z dA)."""
+    u = (d - lim[i, j, 0]) * lim[i, j, 2]
+    if u <= 0.0:
+        return 0.0, 0.0, 0.0
+    if u >= nu - 1:
+        return tab[i, j, nu - 1, 0], tab[i, j, nu - 1, 1], tab[i, j, nu - 1, 2]
+    k = int(u)
+    r = u - k
+    t0 = tab[i, j, k]
+    t1 = tab[i, j, k + 1]
+    return t0[0] + r * (t1[0] - t0[0]), t0[1] + r * (t1[1] - t0[1]), t0[2] + r * (t1[2] - t0[2])
+
+
+@njit(cache=True, inline="always")
+def _section_tab(tab, lim, i, psi, d):
+    """Bilinear read of station ``i``'s table at (psi [rad], d [m]); symmetry for psi < 0."""
+    npsi = tab.shape[1]
+    nu = tab.shape[2]
+    sgn = 1.0
+    if psi < 0.0:
+        psi = -psi
+        sgn = -1.0
+    f = psi * ((npsi - 1) / np.pi)
+    j = min(int(f), npsi - 2)
+    w = min(f - j, 1.0)
+    a0, y0, z0 = _row(tab, lim, i, j, d, nu)
+    a1, y1, z1 = _row(tab, lim, i, j + 1, d, nu)
+    return a0 + w * (a1 - a0), sgn * (y0 + w * (y1 - y0)), z0 + w * (z1 - z0)
+
+
+@njit(cache=True)
+def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb, wave, out):
     """Volume-based FK + HS force and moments about G in earth axes.
 
-    ``wave`` (nst, 4) holds (eta, eta_x, eta_y, dphi_zt) at each station. ``out`` (6,) receives
+    ``wave`` (nst, 2 or 3) holds (eta, S[, dphi_zt]) at each station. ``out`` (6,) receives
     (Fx, Fy, Fz, Mx, My, Mz) [N, N m]. Per station (paper 000, steps 1-7): waterline height and
     effective heel (roll + lateral slope) → clipped section volume dV and centre →
     dF = rho g dV (-eta_x, -eta_y, 1) + rho dV dphi_zt (0, 0, 1) (eq. 9), dM = r_CV x dF
@@ -35,15 +122,20 @@ def _fkhs(xs, dx, ys, zs, npts, rho, g, xg, zg, h, phi, theta, wave, out):
     my = 0.0
     mz = 0.0
     vol = 0.0
+    use_tab = tab.shape[0] > 0
+    use_dz = wave.shape[1] > 2
     for i in range(xs.shape[0]):
         eta = wave[i, 0]
-        ex = wave[i, 1]
-        ey = wave[i, 2]
-        dz = wave[i, 3]
-        a = ct * sp - ey * cp
-        b = ct * cp + ey * sp
+        ex = cb * wave[i, 1]
+        ey = sb * wave[i, 1]
+        dz = wave[i, 2] if use_dz else 0.0
         c = eta + st * xs[i] - h
-        A, Sy, Sz = _section(ys[i], zs[i], npts[i], a, b, c)
+        if use_tab:
+            # waterline a y + b z <= c with (a, b) = r (sin psi, cos psi), psi = phi - atan(ey / ct)
+            r = math.sqrt(ct * ct + ey * ey)
+            A, Sy, Sz = _section_tab(tab, lim, i, phi - _atan(ey / ct), c / r)
+        else:
+            A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp - ey * cp, ct * cp + ey * sp, c)
         if A <= 0.0:
             continue
         dV = A * dx[i]
@@ -77,10 +169,10 @@ def _fkhs(xs, dx, ys, zs, npts, rho, g, xg, zg, h, phi, theta, wave, out):
 
 
 @njit(cache=True)
-def _rhs(xs, dx, ys, zs, npts, p, wave, s, ds, f):
+def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f):
     """State derivative. s = (h, phi, theta, hdot, phidot, thetadot); p = parameters:
-    (rho, g, xg, zg, mass, m33, i44, i55, b33, b44, b44q, b55)."""
-    _fkhs(xs, dx, ys, zs, npts, p[0], p[1], p[2], p[3], s[0], s[1], s[2], wave, f)
+    (rho, g, xg, zg, mass, m33, i44, i55, b33, b44, b44q, b55, cos beta, sin beta)."""
+    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13], wave, f)
     ds[0] = s[3]
     ds[1] = s[4]
     ds[2] = s[5]
@@ -89,12 +181,14 @@ def _rhs(xs, dx, ys, zs, npts, p, wave, s, ds, f):
     ds[5] = (f[4] - p[11] * s[5]) / p[7]
 
 
-@njit(cache=True)
-def _simulate(xs, dx, ys, zs, npts, p, wtab, dt, nsteps, s0, phi_cap, out, forces):
-    """Fixed-step RK4 over ``nsteps``; ``wtab`` (2 nsteps + 1, nst, 4) on the half-step grid.
+@njit(cache=True, nogil=True)
+def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_cap, out, forces):
+    """Fixed-step RK4 from step ``n0`` to ``nsteps``; ``wtab`` (2 nsteps + 1, nst, nq) on the
+    half-step grid.
 
-    ``out`` (nsteps + 1, 6) receives the state; ``forces`` (nsteps + 1, 6) the FK+HS loads.
-    Stops when |phi| > phi_cap (capsize). Returns the number of steps done; no allocation in the loop.
+    ``out`` (nsteps + 1, 6) receives the state (row n0 is set to ``s0``); ``forces``
+    (nsteps + 1, 6) the FK+HS loads, or pass a (0, 6) array to skip them. Stops when
+    |phi| > phi_cap (capsize). Returns the index of the last step done; no allocation in the loop.
     """
     n6 = 6
     s = np.empty(n6)
@@ -104,30 +198,45 @@ def _simulate(xs, dx, ys, zs, npts, p, wtab, dt, nsteps, s0, phi_cap, out, force
     k4 = np.empty(n6)
     tmp = np.empty(n6)
     f = np.empty(6)
+    keep = forces.shape[0] > 0
     for q in range(n6):
         s[q] = s0[q]
-        out[0, q] = s0[q]
-    _fkhs(xs, dx, ys, zs, npts, p[0], p[1], p[2], p[3], s[0], s[1], s[2], wtab[0], f)
-    for q in range(6):
-        forces[0, q] = f[q]
-    for n in range(nsteps):
+        out[n0, q] = s0[q]
+    if keep:
+        _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13],
+              wtab[2 * n0], f)
+        for q in range(6):
+            forces[n0, q] = f[q]
+    for n in range(n0, nsteps):
         j = 2 * n
-        _rhs(xs, dx, ys, zs, npts, p, wtab[j], s, k1, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j], s, k1, f)
         for q in range(n6):
             tmp[q] = s[q] + 0.5 * dt * k1[q]
-        _rhs(xs, dx, ys, zs, npts, p, wtab[j + 1], tmp, k2, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k2, f)
         for q in range(n6):
             tmp[q] = s[q] + 0.5 * dt * k2[q]
-        _rhs(xs, dx, ys, zs, npts, p, wtab[j + 1], tmp, k3, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k3, f)
         for q in range(n6):
             tmp[q] = s[q] + dt * k3[q]
-        _rhs(xs, dx, ys, zs, npts, p, wtab[j + 2], tmp, k4, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], tmp, k4, f)
         for q in range(n6):
             s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
             out[n + 1, q] = s[q]
-        _fkhs(xs, dx, ys, zs, npts, p[0], p[1], p[2], p[3], s[0], s[1], s[2], wtab[j + 2], f)
-        for q in range(6):
-            forces[n + 1, q] = f[q]
+        if keep:
+            _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13],
+                  wtab[j + 2], f)
+            for q in range(6):
+                forces[n + 1, q] = f[q]
         if abs(s[1]) > phi_cap:
             return n + 1
     return nsteps
+
+
+@njit(cache=True, parallel=True)
+def _simulate_batch(xs, dx, ys, zs, npts, tab, lim, p, wtabs, dt, nsteps, s0, phi_cap, out, last):
+    """Records in parallel (``prange``): ``wtabs`` (nrec, 2 nsteps + 1, nst, nq) → ``out``
+    (nrec, nsteps + 1, 6), ``last`` (nrec,) index of the last step done. Each record is the same
+    computation as ``_simulate``, so results do not depend on the number of threads."""
+    nofo = np.empty((0, 6))
+    for r in prange(wtabs.shape[0]):
+        last[r] = _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtabs[r], dt, 0, nsteps, s0, phi_cap, out[r], nofo)

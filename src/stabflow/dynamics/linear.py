@@ -12,12 +12,13 @@ import numpy as np
 
 from ..statics import G
 from ._kernels import _fkhs
+from .tables import kernel_args
 from .rao import first_harmonic
 
 
 def stiffness_matrix(sec, rho, xg, zg, h0, th0) -> np.ndarray:
     """3x3 restoring matrix for (heave, roll, pitch) [N/m, N, N m / rad ...]."""
-    w = np.zeros((len(sec.x), 4))
+    w = np.zeros((len(sec.x), 2))
     f = np.empty(6)
     C = np.empty((3, 3))
     e = 1e-5
@@ -27,7 +28,7 @@ def stiffness_matrix(sec, rho, xg, zg, h0, th0) -> np.ndarray:
         for sgn in (1, -1):
             q = base.copy()
             q[j] += sgn * e
-            _fkhs(*sec.args(), rho, G, xg, zg, q[0], q[1], q[2], w, f)
+            _fkhs(*kernel_args(sec), rho, G, xg, zg, q[0], q[1], q[2], 1.0, 0.0, w, f)
             loads.append(np.array([f[2], f[3], f[4]]))
         C[:, j] = -(loads[0] - loads[1]) / (2 * e)
     return C

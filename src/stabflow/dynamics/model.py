@@ -21,6 +21,7 @@ from ..io import annotate
 from ..statics import G, equilibrium
 from ..waves.synthesis import station_wave_table
 from ._kernels import _fkhs, _simulate
+from .tables import SectionTables, kernel_args
 
 
 @dataclass(frozen=True)
@@ -51,12 +52,12 @@ class Coefficients:
 
 def stiffness(sec: Sections, rho, xg, zg, h0, th0) -> tuple[float, float, float]:
     """C33 [N/m], C44 [N m/rad], C55 [N m/rad] by central differences of the FK+HS kernel in calm water."""
-    w = np.zeros((len(sec.x), 4))
+    w = np.zeros((len(sec.x), 2))
     f = np.empty(6)
-    args = sec.args()
+    args = kernel_args(sec)
 
     def load(dh=0.0, dphi=0.0, dth=0.0):
-        _fkhs(*args, rho, G, xg, zg, h0 + dh, dphi, th0 + dth, w, f)
+        _fkhs(*args, rho, G, xg, zg, h0 + dh, dphi, th0 + dth, 1.0, 0.0, w, f)
         return f.copy()
 
     e = 1e-4
@@ -120,9 +121,16 @@ def section_depths(sec: Sections, h0: float, th0: float) -> np.ndarray:
     return out
 
 
+def parameters(co: Coefficients, rho: float, lcg: float, kg: float, heading_deg: float) -> np.ndarray:
+    """Parameter vector of the RK4 kernels (``_rhs``)."""
+    b = np.radians(heading_deg)
+    return np.array([rho, G, lcg, kg, co.mass, co.mass + co.a33, co.i44 + co.a44, co.i55 + co.a55,
+                     co.b33, co.b44, co.b44q, co.b55, np.cos(b), np.sin(b)])
+
+
 def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves, heading_deg: float,
              speed: float, duration: float, dt: float, *, dphi_dzdt: bool = False, phi0: float = 0.0,
-             phi_cap_deg: float = 90.0) -> xr.Dataset:
+             phi_cap_deg: float = 90.0, tables: SectionTables | None = None) -> xr.Dataset:
     """Simulate one record from the calm-water equilibrium (optionally heeled to ``phi0`` [rad]).
 
     Parameters
@@ -135,6 +143,8 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
         Ship speed [m/s].
     duration, dt : float
         Record length and RK4 step [s].
+    tables : SectionTables, optional
+        Tabulated sectional properties (fast); default: exact clipping.
 
     Returns
     -------
@@ -150,13 +160,12 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     if len(amp):
         wtab = station_wave_table(amp, omega, phase, sec.x, heading_deg, speed, t_half, depth)
     else:
-        wtab = np.zeros((len(t_half), len(sec.x), 4))
-    p = np.array([rho, G, lcg, kg, co.mass, co.mass + co.a33, co.i44 + co.a44, co.i55 + co.a55,
-                  co.b33, co.b44, co.b44q, co.b55])
+        wtab = np.zeros((len(t_half), len(sec.x), 2))
+    p = parameters(co, rho, lcg, kg, heading_deg)
     s0 = np.array([h0, phi0, th0, 0.0, 0.0, 0.0])
     out = np.empty((nsteps + 1, 6))
     forces = np.empty((nsteps + 1, 6))
-    done = _simulate(*sec.args(), p, wtab, dt, nsteps, s0, np.radians(phi_cap_deg), out, forces)
+    done = _simulate(*kernel_args(sec, tables), p, wtab, dt, 0, nsteps, s0, np.radians(phi_cap_deg), out, forces)
     n = done + 1
     t = np.arange(n) * dt
     ds = xr.Dataset(

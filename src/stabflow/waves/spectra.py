@@ -22,11 +22,16 @@ def bretschneider(omega, hs: float, tm: float):
     return np.where(w > 0, s, 0.0)
 
 
+def pierson_moskowitz_modal_frequency(hs: float) -> float:
+    """Modal frequency [rad/s] of the Pierson-Moskowitz spectrum for Hs [m] (paper 004 eq. 22):
+    Hs = 4 sqrt(m0) with m0 = alpha g^2 / (5 wm^4), alpha = 0.0081."""
+    return (16 * 0.0081 * G**2 / (5 * hs**2)) ** 0.25
+
+
 def pierson_moskowitz(omega, hs: float):
     """Pierson-Moskowitz spectrum alpha g^2 w^-5 exp(-5/4 (wm/w)^4), alpha = 0.0081 (paper 004
-    eqs 21-22): Hs = 4 sqrt(m0) with m0 = alpha g^2 / (5 wm^4) fixes wm from Hs alone."""
-    wm = (16 * 0.0081 * G**2 / (5 * hs**2)) ** 0.25
-    return bretschneider(omega, hs, 2 * np.pi / wm)
+    eqs 21-22)."""
+    return bretschneider(omega, hs, 2 * np.pi / pierson_moskowitz_modal_frequency(hs))
 
 
 def _jonswap_shape(w, tm, gamma):

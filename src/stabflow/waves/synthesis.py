@@ -19,39 +19,52 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._kernels import _wave_table
+from ._kernels import _trig_table
 
 G = 9.80665  # [m/s^2]
 
 
-def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None) -> np.ndarray:
-    """(nt, nst, 4) table of (eta, eta_x, eta_y, dphi_zt) at stations ``xs`` and equally spaced ``times``.
+def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None,
+                       dtype=np.float64) -> np.ndarray:
+    """(nt, nst, nq) table of (eta, S[, dphi_zt]) at stations ``xs`` and equally spaced ``times``.
 
-    ``depth`` (nst,) are the sections' calm-water mean depths [m] for the d2phi/dzdt term;
-    None switches the term off (zeros). Computed by phasor recurrence (``_wave_table``).
+    S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
+    ``depth`` (nst,) are the sections' calm-water mean depths [m] for the d2phi/dzdt term (nq = 3);
+    None leaves it out (nq = 2). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
+    the table is one matrix product of the time factors (nt, 2 nc) with the station coefficients
+    (2 nc, nst nq), in ``dtype`` (float32 halves the cost of long ensembles).
     """
-    amp = np.ascontiguousarray(amp, dtype=float)
+    amp = np.asarray(amp, dtype=float)
     omega = np.asarray(omega, float)
     phase = np.asarray(phase, float)
     xs = np.asarray(xs, float)
     times = np.asarray(times, float)
     k = omega**2 / G
     beta = np.radians(heading_deg)
-    cb, sb = np.cos(beta), np.sin(beta)
+    cb = np.cos(beta)
     we = omega - k * speed * cb
     t0 = times[0] if len(times) else 0.0
     dt = times[1] - times[0] if len(times) > 1 else 0.0
     if len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
         raise ValueError("times must be equally spaced")
-    phase0 = np.ascontiguousarray((k * cb)[None, :] * xs[:, None] + phase[None, :] - we[None, :] * t0)
+    # psi = P - we t with P = k cos(beta) x + e: cos psi = cos P cos(we t) + sin P sin(we t)
+    P = (k * cb)[None, :] * xs[:, None] + phase[None, :]
+    cP, sP = np.cos(P), np.sin(P)
+    ak = amp * k
+    cols = [(amp * cP, amp * sP), (-ak * sP, ak * cP)]  # eta = sum a cos psi, S = -sum a k sin psi
     if depth is not None:
         kt = k[None, :] * np.maximum(np.asarray(depth, float)[:, None], 1e-9)
-        smith = np.ascontiguousarray(np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0))
-    else:
-        smith = np.zeros((len(xs), len(amp)))
-    out = np.zeros((len(times), len(xs), 4))
-    _wave_table(amp, k, we, phase0, cb, sb, smith, depth is not None, G, dt, len(times), out)
-    return out
+        smith = np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0)
+        cols.append((-G * ak * smith * cP, -G * ak * smith * sP))
+    nq, nst, nc = len(cols), len(xs), len(amp)
+    coef = np.empty((2 * nc, nst, nq))
+    for q, (c, d) in enumerate(cols):
+        coef[:nc, :, q] = c.T
+        coef[nc:, :, q] = d.T
+    trig = np.empty((len(times), 2 * nc), dtype=dtype)
+    _trig_table(we, t0, dt, trig)
+    out = trig @ coef.reshape(2 * nc, nst * nq).astype(dtype)
+    return out.reshape(len(times), nst, nq)
 
 
 def regular(height: float, wavelength: float):
