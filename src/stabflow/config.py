@@ -28,7 +28,9 @@ def schema(name: str) -> dict:
 
 
 def _fill_defaults(sch: dict, data: Any) -> Any:
-    """Insert schema defaults for missing object keys (recursively)."""
+    """Insert schema defaults for missing object keys (recursively, also inside array items)."""
+    if isinstance(data, list) and sch.get("type") == "array" and isinstance(sch.get("items"), dict):
+        return [_fill_defaults(sch["items"], d) for d in data]
     if not isinstance(data, dict) or sch.get("type") != "object":
         return data
     for key, sub in sch.get("properties", {}).items():
