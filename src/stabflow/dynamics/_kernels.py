@@ -53,10 +53,8 @@ def _build_tables(ys, zs, npts, tab, lim):
 
 
 @njit(cache=True, inline="always")
-def _atan(x):
-    """arctan(x): Abramowitz & Stegun 4.4.49 polynomial (|error| < 2e-8 rad) for |x| <= 1."""
-    if abs(x) > 1.0:
-        return math.atan(x)
+def _atan_poly(x):
+    """arctan(x) for |x| <= 1: Abramowitz & Stegun 4.4.49 polynomial (|error| < 2e-8 rad)."""
     x2 = x * x
     p = 0.0028662257
     p = p * x2 - 0.0161657367
@@ -101,78 +99,98 @@ def _section_tab(tab, lim, i, psi, d):
     return a0 + w * (a1 - a0), sgn * (y0 + w * (y1 - y0)), z0 + w * (z1 - z0)
 
 
+@njit(cache=True, inline="always")
+def _rotate(bx, by, bz, cp, sp, ct, st):
+    """Body → earth axes, R = Ry(theta) Rx(phi)."""
+    y1 = cp * by - sp * bz
+    z1 = sp * by + cp * bz
+    return ct * bx + st * z1, y1, -st * bx + ct * z1
+
+
 @njit(cache=True)
-def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb, wave, out):
+def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb, wave, out, work):
     """Volume-based FK + HS force and moments about G in earth axes.
 
     ``wave`` (nst, 2 or 3) holds (eta, S[, dphi_zt]) at each station. ``out`` (6,) receives
     (Fx, Fy, Fz, Mx, My, Mz) [N, N m]. Per station (paper 000, steps 1-7): waterline height and
-    effective heel (roll + lateral slope) → clipped section volume dV and centre →
-    dF = rho g dV (-eta_x, -eta_y, 1) + rho dV dphi_zt (0, 0, 1) (eq. 9), dM = r_CV x dF
-    (eqs 11, 12, 15; r from G, earth axes). Returns the total submerged volume [m^3].
+    effective heel (roll + lateral slope) → clipped section volume dV and centre b (from G, body
+    axes) → dF = rho g dV w with w = (-eta_x, -eta_y, 1 + dphi_zt / g) (eq. 9) and dM = (R b) x dF
+    (eqs 11, 12, 15). ``work`` (nst, 5) is scratch. Since w = S (-cos beta, -sin beta, 0) + (1 + dphi_zt / g) e_z, the sums
+    P = sum b dV S and Q = sum b dV (1 + dphi_zt / g) are formed in body axes (b dV needs only the
+    section's area and first moments, no division) and rotated once. Returns the volume [m^3].
     """
     ct = np.cos(theta)
     st = np.sin(theta)
     cp = np.cos(phi)
     sp = np.sin(phi)
-    fx = 0.0
-    fy = 0.0
-    fz = 0.0
-    mx = 0.0
-    my = 0.0
-    mz = 0.0
+    ict = 1.0 / ct
     vol = 0.0
+    vs = 0.0
+    vq = 0.0
+    px = 0.0
+    py = 0.0
+    pz = 0.0
+    qx = 0.0
+    qy = 0.0
+    qz = 0.0
     use_tab = tab.shape[0] > 0
     use_dz = wave.shape[1] > 2
-    for i in range(xs.shape[0]):
-        eta = wave[i, 0]
-        ex = cb * wave[i, 1]
-        ey = sb * wave[i, 1]
-        dz = wave[i, 2] if use_dz else 0.0
-        c = eta + st * xs[i] - h
+    nst = xs.shape[0]
+    if use_tab:
+        # branch-free pass over the stations (vectorised by LLVM): waterline normal angle and
+        # distance, psi = phi - atan(ey / ct), d = c / sqrt(ct^2 + ey^2); slopes clipped to 45 deg
+        for i in range(nst):
+            ey = sb * wave[i, 1]
+            x = min(max(ey * ict, -1.0), 1.0)
+            work[i, 0] = phi - _atan_poly(x)
+            work[i, 1] = (wave[i, 0] + st * xs[i] - h) / math.sqrt(ct * ct + ey * ey)
+    for i in range(nst):
         if use_tab:
-            # waterline a y + b z <= c with (a, b) = r (sin psi, cos psi), psi = phi - atan(ey / ct)
-            r = math.sqrt(ct * ct + ey * ey)
-            A, Sy, Sz = _section_tab(tab, lim, i, phi - _atan(ey / ct), c / r)
+            A, Sy, Sz = _section_tab(tab, lim, i, work[i, 0], work[i, 1])
         else:
-            A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp - ey * cp, ct * cp + ey * sp, c)
-        if A <= 0.0:
-            continue
+            ey = sb * wave[i, 1]
+            A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp - ey * cp, ct * cp + ey * sp, wave[i, 0] + st * xs[i] - h)
+        work[i, 2] = A
+        work[i, 3] = Sy
+        work[i, 4] = Sz
+    for i in range(nst):
+        # dry sections add zeros
+        S = wave[i, 1]
+        A = work[i, 2]
         dV = A * dx[i]
+        wz = 1.0 + wave[i, 2] / g if use_dz else 1.0
+        bx = (xs[i] - xg) * dV
+        by = work[i, 3] * dx[i]
+        bz = (work[i, 4] - zg * A) * dx[i]
         vol += dV
-        # volume centre relative to G, body axes -> earth axes (R = Ry(theta) Rx(phi))
-        bx = xs[i] - xg
-        by = Sy / A
-        bz = Sz / A - zg
-        y1 = cp * by - sp * bz
-        z1 = sp * by + cp * bz
-        rx = ct * bx + st * z1
-        ry = y1
-        rz = -st * bx + ct * z1
-        f0 = rho * g * dV
-        dfx = -f0 * ex
-        dfy = -f0 * ey
-        dfz = f0 + rho * dV * dz
-        fx += dfx
-        fy += dfy
-        fz += dfz
-        mx += ry * dfz - rz * dfy
-        my += rz * dfx - rx * dfz
-        mz += rx * dfy - ry * dfx
-    out[0] = fx
-    out[1] = fy
-    out[2] = fz
-    out[3] = mx
-    out[4] = my
-    out[5] = mz
+        vs += dV * S
+        vq += dV * wz
+        px += bx * S
+        py += by * S
+        pz += bz * S
+        qx += bx * wz
+        qy += by * wz
+        qz += bz * wz
+    f = rho * g
+    ux = -cb
+    uy = -sb
+    out[0] = f * ux * vs
+    out[1] = f * uy * vs
+    out[2] = f * vq
+    rpx, rpy, rpz = _rotate(px, py, pz, cp, sp, ct, st)
+    rqx, rqy, rqz = _rotate(qx, qy, qz, cp, sp, ct, st)
+    # (R P) x u + (R Q) x e_z
+    out[3] = f * (-rpz * uy + rqy)
+    out[4] = f * (rpz * ux - rqx)
+    out[5] = f * (rpx * uy - rpy * ux)
     return vol
 
 
 @njit(cache=True)
-def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f):
+def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f, work):
     """State derivative. s = (h, phi, theta, hdot, phidot, thetadot); p = parameters:
     (rho, g, xg, zg, mass, m33, i44, i55, b33, b44, b44q, b55, cos beta, sin beta)."""
-    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13], wave, f)
+    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13], wave, f, work)
     ds[0] = s[3]
     ds[1] = s[4]
     ds[2] = s[5]
@@ -198,33 +216,34 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
     k4 = np.empty(n6)
     tmp = np.empty(n6)
     f = np.empty(6)
+    work = np.empty((xs.shape[0], 5))
     keep = forces.shape[0] > 0
     for q in range(n6):
         s[q] = s0[q]
         out[n0, q] = s0[q]
     if keep:
         _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13],
-              wtab[2 * n0], f)
+              wtab[2 * n0], f, work)
         for q in range(6):
             forces[n0, q] = f[q]
     for n in range(n0, nsteps):
         j = 2 * n
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j], s, k1, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j], s, k1, f, work)
         for q in range(n6):
             tmp[q] = s[q] + 0.5 * dt * k1[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k2, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k2, f, work)
         for q in range(n6):
             tmp[q] = s[q] + 0.5 * dt * k2[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k3, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k3, f, work)
         for q in range(n6):
             tmp[q] = s[q] + dt * k3[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], tmp, k4, f)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], tmp, k4, f, work)
         for q in range(n6):
             s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
             out[n + 1, q] = s[q]
         if keep:
             _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13],
-                  wtab[j + 2], f)
+                  wtab[j + 2], f, work)
             for q in range(6):
                 forces[n + 1, q] = f[q]
         if abs(s[1]) > phi_cap:

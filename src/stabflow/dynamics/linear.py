@@ -28,7 +28,7 @@ def stiffness_matrix(sec, rho, xg, zg, h0, th0) -> np.ndarray:
         for sgn in (1, -1):
             q = base.copy()
             q[j] += sgn * e
-            _fkhs(*kernel_args(sec), rho, G, xg, zg, q[0], q[1], q[2], 1.0, 0.0, w, f)
+            _fkhs(*kernel_args(sec), rho, G, xg, zg, q[0], q[1], q[2], 1.0, 0.0, w, f, np.empty((len(sec.x), 5)))
             loads.append(np.array([f[2], f[3], f[4]]))
         C[:, j] = -(loads[0] - loads[1]) / (2 * e)
     return C

@@ -57,7 +57,7 @@ def stiffness(sec: Sections, rho, xg, zg, h0, th0) -> tuple[float, float, float]
     args = kernel_args(sec)
 
     def load(dh=0.0, dphi=0.0, dth=0.0):
-        _fkhs(*args, rho, G, xg, zg, h0 + dh, dphi, th0 + dth, 1.0, 0.0, w, f)
+        _fkhs(*args, rho, G, xg, zg, h0 + dh, dphi, th0 + dth, 1.0, 0.0, w, f, np.empty((len(sec.x), 5)))
         return f.copy()
 
     e = 1e-4

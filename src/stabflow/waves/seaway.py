@@ -22,6 +22,7 @@ any record can be regenerated on its own (the split-time step relies on this).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.optimize import brentq
@@ -63,7 +64,11 @@ class Seaway:
         return 2 * np.pi / self.tp
 
     def edges(self) -> np.ndarray:
-        """Bin edges (n_components + 1) [rad/s]."""
+        """Bin edges (n_components + 1) [rad/s] (computed once per seaway)."""
+        return self._edges
+
+    @cached_property
+    def _edges(self) -> np.ndarray:
         S, w0, n = self.density, self.modal_frequency, self.n_components
         lo, hi = cutoff_frequencies(S, w0)
         if self.method == "uniform":
