@@ -235,7 +235,7 @@ def run_ensemble_merge(shard_ncs, out_nc, fig_distribution=None, fig_spectra=Non
             shards.append(d.load())
     ens = merge(shards)
     a = ens.attrs
-    head = (f"{a['ship']} {a['condition']}: Hs {a['hs']:g} m, Tp {a['tp']:g} s, {a['speed_kn']:g} kn, "
+    head = (f"{a['condition']}: Hs {a['hs']:g} m, Tp {a['tp']:g} s, {a['speed_kn']:g} kn, "
             f"heading {a['heading_deg']:g}°, {float(ens['exposure_hours']):.0f} h")
     if fig_distribution:
         roll_distribution(ens, fig_distribution, f"Roll distribution: {head}")
@@ -245,6 +245,29 @@ def run_ensemble_merge(shard_ncs, out_nc, fig_distribution=None, fig_spectra=Non
         time_histories(ens, fig_samples, f"Sample records: {head}")
     write_netcdf(ens, out_nc)
     return ens
+
+
+def run_extremes(ensemble_nc, cfg: dict, out_nc, fig_threshold=None, fig_rate=None, fig_validation=None):
+    """extremes step: envelope POT + GPD rates from sample blocks, validated against the ensemble."""
+    from .extremes import analyse
+    from .io import write_netcdf
+    from .plots import exceedance_rate_curve, extremes_validation, threshold_diagnostics
+
+    with xr.open_dataset(ensemble_nc) as e:
+        ens = e.load()
+    ds, extra = analyse(ens, cfg, progress=True)
+    a = ens.attrs
+    head = f"{a['condition']}: Hs {a['hs']:g} m, {a['speed_kn']:g} kn, heading {a['heading_deg']:g}°"
+    if fig_threshold:
+        threshold_diagnostics(extra["sample_series"], extra["tau"], extra["u"], float(ds["sample_roll_std"][0]),
+                              fig_threshold, f"Threshold selection ({extra['hours']:.0f} h sample): {head}")
+    if fig_rate:
+        exceedance_rate_curve(extra, ds["target"].values, fig_rate, f"Roll exceedance rate: {head}")
+    if fig_validation:
+        extremes_validation(ds, fig_validation, f"GPD from {extra['hours']:.0f} h samples vs brute force "
+                            f"({ds.attrs['ensemble_hours']:.0f} h): {head}")
+    write_netcdf(ds, out_nc)
+    return ds
 
 
 def _ensemble_condition(config_path, key):
@@ -317,6 +340,10 @@ def main(argv=None) -> int:
     s.add_argument("shards", nargs="+")
     s.add_argument("-o", "--output", required=True)
     s.add_argument("--figures", help="folder for roll_distribution.png, spectra.png, time_histories.png")
+    s = sub.add_parser("extremes", help="GPD extrapolation of roll from an ensemble, validated by brute force")
+    s.add_argument("ensemble", help="ensemble.nc of a condition")
+    s.add_argument("--config", default="config/config.yaml")
+    s.add_argument("-o", "--output", required=True)
     s = sub.add_parser("gz", help="print particulars and the GZ table of a ship")
     s.add_argument("ship")
     s.add_argument("--every", type=float, default=10.0, help="print every N degrees")
@@ -355,6 +382,10 @@ def main(argv=None) -> int:
                 f = Path(args.figures) if args.figures else None
                 run_ensemble_merge(args.shards, args.output, *((f / "roll_distribution.png", f / "spectra.png",
                                                                  f / "time_histories.png") if f else ()))
+            elif args.cmd == "extremes":
+                from .config import load_pipeline
+
+                run_extremes(args.ensemble, load_pipeline(args.config)["extremes"], args.output)
             elif args.cmd == "gz":
                 _cmd_gz(args)
     except StabflowError as exc:

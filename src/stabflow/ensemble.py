@@ -220,7 +220,7 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
     samples = {}
     args = kernel_args(model.sec, model.tables)
     recs = list(records)
-    bar = tqdm(total=len(recs), desc=f"{model.ship.name} records {recs[0] if recs else 0}-", disable=not progress,
+    bar = tqdm(total=len(recs), desc=f"{model.ship.name} records {recs[0] if recs else 0}-", disable=not progress, mininterval=10,
                unit="rec")
     for b0 in range(0, len(recs), BATCH):
         batch = recs[b0: b0 + BATCH]
@@ -262,8 +262,8 @@ def shard_dataset(model: Model, recs, per, samples, edges, nst) -> xr.Dataset:
             "crossing_rate": ("crossing", cr[:, 4]),
             "crossing_step": ("crossing", cr[:, 5].astype(np.int64)),
             "peak_record": ("peak", pk[:, 0].astype(np.int64)),
-            "peak_time": ("peak", pk[:, 1]),
-            "peak_value": ("peak", pk[:, 2]),
+            "peak_time": ("peak", pk[:, 1].astype(np.float32)),
+            "peak_value": ("peak", pk[:, 2].astype(np.float32)),
             "envelope_peak_record": ("envelope_peak", ep[:, 0].astype(np.int64)),
             "envelope_peak_time": ("envelope_peak", ep[:, 1]),
             "envelope_peak_value": ("envelope_peak", ep[:, 2]),

@@ -127,6 +127,23 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "sample_roll": ("degree", "roll (sample records)"),
     "sample_pitch": ("degree", "pitch from equilibrium trim (sample records)"),
     "sample_roll_rate": ("degree/s", "roll rate (sample records)"),
+    # extremes
+    "block": ("1", "independent sample (block of records)"),
+    "target": ("degree", "roll angle whose exceedance rate is estimated"),
+    "decorrelation_time": ("s", "lag after which the roll autocorrelation envelope stays below 0.05"),
+    "sample_roll_std": ("degree", "roll standard deviation of the sample"),
+    "gpd_shape": ("1", "generalized Pareto shape xi"),
+    "gpd_scale": ("degree", "generalized Pareto scale"),
+    "n_exceedances": ("1", "declustered exceedances of the threshold in the sample"),
+    "sample_hours": ("h", "simulated time of the sample"),
+    "rate_estimate": ("1/h", "rate of independent exceedances of the target (GPD extrapolation)"),
+    "rate_lower": ("1/h", "lower confidence bound of the rate"),
+    "rate_upper": ("1/h", "upper confidence bound of the rate"),
+    "rate_bruteforce": ("1/h", "rate counted directly in the rest of the ensemble"),
+    "bruteforce_hours": ("h", "simulated time of the brute-force count"),
+    "inside": ("1", "1 if the brute-force rate lies inside the confidence interval"),
+    "coverage": ("1", "fraction of samples whose interval contains the brute-force rate"),
+    "rate_ratio": ("1", "estimated over brute-force rate"),
 }
 
 

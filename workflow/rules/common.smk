@@ -17,6 +17,9 @@ RAO_CONDITIONS = [c["name"] for c in config["rao"]["conditions"]]
 
 
 ENSEMBLES = {f"{c['ship']}_{c['name']}": c for c in config["ensembles"]}
+for _key in config["extremes"]["conditions"]:
+    if _key not in ENSEMBLES:
+        raise ValueError(f"config: extremes: conditions: {_key!r} is not an ensemble (have {sorted(ENSEMBLES)})")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")
@@ -99,5 +102,6 @@ def all_outputs():
         + per_ship(f"{RESULTS}/waves/{{ship}}.nc")
         + per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc")
         + [f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES]
+        + [f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]]
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )
