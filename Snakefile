@@ -1,5 +1,5 @@
 # stabflow: ship dynamic stability in irregular seas.
-# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> extremes -> validation -> report.
+# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> extremes / splittime -> validation -> report.
 
 
 configfile: "config/config.yaml"
@@ -12,6 +12,7 @@ include: "workflow/rules/waves.smk"
 include: "workflow/rules/rao.smk"
 include: "workflow/rules/ensemble.smk"
 include: "workflow/rules/extremes.smk"
+include: "workflow/rules/splittime.smk"
 include: "workflow/rules/validate.smk"
 include: "workflow/rules/report.smk"
 

@@ -17,9 +17,10 @@ RAO_CONDITIONS = [c["name"] for c in config["rao"]["conditions"]]
 
 
 ENSEMBLES = {f"{c['ship']}_{c['name']}": c for c in config["ensembles"]}
-for _key in config["extremes"]["conditions"]:
-    if _key not in ENSEMBLES:
-        raise ValueError(f"config: extremes: conditions: {_key!r} is not an ensemble (have {sorted(ENSEMBLES)})")
+for _step in ("extremes", "splittime"):
+    for _key in config[_step]["conditions"]:
+        if _key not in ENSEMBLES:
+            raise ValueError(f"config: {_step}: conditions: {_key!r} is not an ensemble (have {sorted(ENSEMBLES)})")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")
@@ -103,5 +104,6 @@ def all_outputs():
         + per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc")
         + [f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES]
         + [f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]]
+        + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )
