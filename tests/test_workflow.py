@@ -112,6 +112,20 @@ def test_ensemble_outputs(pipeline):
         assert (pipeline / ENS / f).stat().st_size > 10_000
 
 
+def test_extremes_and_splittime_outputs(pipeline):
+    with xr.open_dataset(pipeline / "extremes" / "barge_beam.nc") as x:
+        assert x.sizes["block"] == 6 and x["rate_estimate"].attrs["units"] == "1/h"
+        assert ((x["coverage"] >= 0) & (x["coverage"] <= 1)).all()
+    with xr.open_dataset(pipeline / "splittime" / "barge_beam.nc") as st:
+        assert st.sizes["split_threshold"] == 2 and int(st["crossings"].min()) > 0
+        assert (st["perturbed_runs"] > st["crossings"]).all()
+        assert (st["capsize_rate_lower"] <= st["capsize_rate_upper"]).all()
+    for f in ["extremes/barge_beam_validation.png", "splittime/barge_beam_perturbation.png", "splittime/barge_beam_rate.png"]:
+        assert (pipeline / f).stat().st_size > 10_000, f
+    page = (pipeline / "report" / "html" / "rare_events.html").read_text()
+    assert "Split-time capsize rate" in page and "coverage" in page
+
+
 def test_ensemble_j1_j2_and_cluster_executor_identical(pipeline, tmp_path):
     """-j1, the default -j2 run and the cluster-generic executor (local submit script standing in
     for sbatch) write bit-identical ensemble files."""

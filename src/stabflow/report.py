@@ -157,6 +157,84 @@ def waves_page(results: Path, figdir: Path) -> str | None:
     return "\n".join(lines)
 
 
+def _fig(results: Path, figdir: Path, rel: str, caption: str) -> list[str]:
+    src = results / rel
+    if not src.exists():
+        return []
+    name = rel.replace("/", "_")
+    shutil.copy(src, figdir / name)
+    return [f":::{{figure}} figures/{name}", "", caption, ":::", ""]
+
+
+def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
+    """Irregular seas: ensemble statistics, extreme roll (GPD vs brute force), split-time capsize rate."""
+    ens = [f"{c['ship']}_{c['name']}" for c in config.get("ensembles", [])]
+    if not ens:
+        return None
+    L = ["# Irregular seas: ensembles, extreme roll and capsizing", "",
+         "Each ensemble is many independent 30-minute records (record r from master seed and r), simulated with the "
+         "volume-based FK + hydrostatic model on tabulated sectional properties; only statistics are kept.", "",
+         "| condition | Hs [m] | Tp [s] | speed [kn] | heading [deg] | hours | roll σ [deg] | roll kurtosis | capsizes |",
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for k in ens:
+        p = results / "ensemble" / k / "ensemble.nc"
+        if not p.exists():
+            continue
+        e = _open(p)
+        a = e.attrs
+        L.append(f"| {k} | {a['hs']:g} | {a['tp']:g} | {a['speed_kn']:g} | {a['heading_deg']:g} | "
+                 f"{float(e['exposure_hours']):.0f} | {float(e['std'].sel(dof='roll')):.2f} | "
+                 f"{float(e['kurtosis'].sel(dof='roll')):.2f} | {int(e['capsize_count'])} |")
+    L.append("")
+    for k in ens:
+        L += [f"## {k}", ""]
+        L += _fig(results, figdir, f"ensemble/{k}/roll_distribution.png",
+                  "Roll distribution normalised by σ against the normal distribution, both tails (seed 000 Figs 11-13).")
+        L += _fig(results, figdir, f"ensemble/{k}/spectra.png", "Mean encounter spectra (Welch) of wave, heave, roll, pitch.")
+        L += _fig(results, figdir, f"ensemble/{k}/time_histories.png", "Sample records (seed 000 Fig. 10).")
+        px = results / "extremes" / f"{k}.nc"
+        if px.exists():
+            x = _open(px)
+            L += ["### Extreme roll: GPD extrapolation against brute force", "",
+                  f"Envelope: {x.attrs['envelope']}; declustering: {x.attrs['declustering']} "
+                  f"({float(x['decorrelation_time']):.1f} s); fit: {x.attrs['fit']}; interval: {x.attrs['interval']}. "
+                  f"Each sample is {float(x['sample_hours'][0]):.0f} h; brute force counts the rest of the "
+                  f"{x.attrs['ensemble_hours']:.0f}-h ensemble.", "",
+                  "| target [deg] | rate, first sample [1/h] | 95 % interval | brute force [1/h] | median ratio | coverage |",
+                  "|---:|---:|---|---:|---:|---:|"]
+            for tg in x["target"].values:
+                d = x.sel(target=tg)
+                L.append(f"| {tg:g} | {float(d['rate_estimate'][0]):.4g} | [{float(d['rate_lower'][0]):.3g}, "
+                         f"{float(d['rate_upper'][0]):.3g}] | {float(d['rate_bruteforce'][0]):.4g} | "
+                         f"{float(d['rate_ratio'].median()):.2f} | {float(d['coverage']):.0%} of {x.sizes['block']} |")
+            L.append("")
+            for f, c in (("threshold", "Threshold selection: mean residual life and parameter stability (pyextremes)."),
+                         ("rate", "Exceedance rate from the first sample with its interval, and counted in the ensemble."),
+                         ("validation", "Every independent sample's estimate and interval against the brute-force rate.")):
+                L += _fig(results, figdir, f"extremes/{k}_{f}.png", c)
+        ps = results / "splittime" / f"{k}.nc"
+        if ps.exists():
+            st = _open(ps)
+            L += ["### Split-time capsize rate against brute force", "",
+                  f"Sample {float(st['sample_hours']):.0f} h; brute force {int(st['bruteforce_capsizes'])} capsizes in "
+                  f"{float(st['bruteforce_hours']):.0f} h: {float(st['capsize_rate_bruteforce']):.3g} /h "
+                  f"[{float(st['capsize_rate_bruteforce_lower']):.3g}, {float(st['capsize_rate_bruteforce_upper']):.3g}].", "",
+                  "| threshold [deg] | crossings | clusters | P(capsize / cluster) | split-time rate [1/h] | 95 % interval | brute force inside |",
+                  "|---:|---:|---:|---:|---:|---|---|"]
+            for th in st["split_threshold"].values:
+                d = st.sel(split_threshold=th)
+                L.append(f"| {th:g} | {int(d['crossings'])} | {int(d['clusters'])} | {float(d['capsize_probability']):.3g} | "
+                         f"{float(d['capsize_rate_splittime']):.3g} | [{float(d['capsize_rate_lower']):.3g}, "
+                         f"{float(d['capsize_rate_upper']):.3g}] | {'yes' if int(d['inside']) else 'no'} |")
+            L.append("")
+            for f, c in (("crossings", "Non-rare problem: threshold crossings on a sample record (paper 003 Fig. 3)."),
+                         ("perturbation", "Motion perturbation at one crossing (paper 003 Fig. 4)."),
+                         ("metric", "Metric tail and fitted GPD, extrapolated to y = 1."),
+                         ("rate", "Capsize rate against the intermediate threshold, with the brute-force interval.")):
+                L += _fig(results, figdir, f"splittime/{k}_{f}.png", c)
+    return "\n".join(L)
+
+
 def validation_page(results: Path, ships: list[str]) -> tuple[str, int, int]:
     """MyST page with every check as a row; returns (page, n_pass, n_fail)."""
     rows, npass, nfail = [], 0, 0
@@ -230,6 +308,10 @@ def build_report(results: str | Path, ships: list[str], config: dict, source: st
         if wp:
             (book / "waves.md").write_text(wp)
             toc.append("      - file: waves")
+        rp = rare_events_page(results, config, figdir)
+        if rp:
+            (book / "rare_events.md").write_text(rp)
+            toc.append("      - file: rare_events")
         toc += ["  - caption: Validation and methods", "    chapters:", "      - file: validation", "      - file: methods"]
         (book / "_toc.yml").write_text("\n".join(toc) + "\n")
         env = dict(os.environ, PYTHONHASHSEED="0")
