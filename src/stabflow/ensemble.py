@@ -215,7 +215,6 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
 
     cond = model.cond
     edges = bins(cond)
-    nst = len(model.sec.x)
     per = []
     samples = {}
     args = kernel_args(model.sec, model.tables)
@@ -235,10 +234,10 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
                 samples[r] = (out[q], int(last[q]), wave_mid)
         bar.update(len(batch))
     bar.close()
-    return shard_dataset(model, recs, per, samples, edges, nst)
+    return shard_dataset(model, recs, per, samples, edges)
 
 
-def shard_dataset(model: Model, recs, per, samples, edges, nst) -> xr.Dataset:
+def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
     cond = model.cond
     nrec = len(recs)
     cr = _events([p["crossings"] for p in per], recs, 5)

@@ -155,7 +155,13 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
         sig = block_sigma(ens, recs)
         u = cfg["threshold_sigma"] * sig
         mx, mr, mt = decluster(er[inb], et[inb], ev[inb], u, tau)
-        xi, sc, n_u, rate, lo, hi = estimate(mx, mr, recs, u, hours, targets, int(cfg["n_boot"]), cfg["alpha"], rng)
+        # the first sample also gets its curve on a grid for the figure (same bootstrap resamples)
+        xg = np.linspace(u, max(targets.max(), u) * 1.15, 60) if b == 0 else np.zeros(0)
+        xi, sc, n_u, rate, lo, hi = estimate(mx, mr, recs, u, hours, np.concatenate([targets, xg]),
+                                             int(cfg["n_boot"]), cfg["alpha"], rng)
+        nt = len(targets)
+        r_g, lo_g, hi_g = rate[nt:], lo[nt:], hi[nt:]
+        rate, lo, hi = rate[:nt], lo[:nt], hi[:nt]
         if b == 0 and n_u >= 3:
             # the reported fit of the first sample is pyextremes' own (the bootstrap refits use
             # scipy.stats.genpareto, the same maximum likelihood)
@@ -170,9 +176,6 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
         rows.append(dict(u=u, sigma=sig, xi=xi, scale=sc, n_u=n_u, hours=hours, rate=rate, lo=lo, hi=hi, bf=bf,
                          bf_hours=bf_hours))
         if b == 0:
-            xg = np.linspace(u, max(targets.max(), u) * 1.15, 60)
-            _, _, _, r_g, lo_g, hi_g = estimate(mx, mr, recs, u, hours, xg, int(cfg["n_boot"]), cfg["alpha"],
-                                                np.random.default_rng(int(cfg["seed"]) + 1))
             allmx, _, _ = decluster(er, et, ev, u, tau)
             gap = 2 * tau + 60.0
             sample = pd.Series(ev[inb], index=timeline(er[inb], et[inb], duration, gap)).sort_index()

@@ -166,6 +166,11 @@ def _fig(results: Path, figdir: Path, rel: str, caption: str) -> list[str]:
     return [f":::{{figure}} figures/{name}", "", caption, ":::", ""]
 
 
+def _figs(results: Path, figdir: Path, pattern: str, items) -> list[str]:
+    """Figure blocks for (name, caption) pairs, file ``pattern.format(name)``."""
+    return [line for name, cap in items for line in _fig(results, figdir, pattern.format(name), cap)]
+
+
 def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
     """Irregular seas: ensemble statistics, extreme roll (GPD vs brute force), split-time capsize rate."""
     ens = [f"{c['ship']}_{c['name']}" for c in config.get("ensembles", [])]
@@ -188,10 +193,11 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
     L.append("")
     for k in ens:
         L += [f"## {k}", ""]
-        L += _fig(results, figdir, f"ensemble/{k}/roll_distribution.png",
-                  "Roll distribution normalised by σ against the normal distribution, both tails (seed 000 Figs 11-13).")
-        L += _fig(results, figdir, f"ensemble/{k}/spectra.png", "Mean encounter spectra (Welch) of wave, heave, roll, pitch.")
-        L += _fig(results, figdir, f"ensemble/{k}/time_histories.png", "Sample records (seed 000 Fig. 10).")
+        L += _figs(results, figdir, f"ensemble/{k}/{{}}.png", (
+            ("roll_distribution", "Roll distribution normalised by σ against the normal distribution, both tails "
+                                  "(seed 000 Figs 11-13)."),
+            ("spectra", "Mean encounter spectra (Welch) of wave, heave, roll, pitch."),
+            ("time_histories", "Sample records (seed 000 Fig. 10).")))
         px = results / "extremes" / f"{k}.nc"
         if px.exists():
             x = _open(px)
@@ -208,10 +214,10 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
                          f"{float(d['rate_upper'][0]):.3g}] | {float(d['rate_bruteforce'][0]):.4g} | "
                          f"{float(d['rate_ratio'].median()):.2f} | {float(d['coverage']):.0%} of {x.sizes['block']} |")
             L.append("")
-            for f, c in (("threshold", "Threshold selection: mean residual life and parameter stability (pyextremes)."),
-                         ("rate", "Exceedance rate from the first sample with its interval, and counted in the ensemble."),
-                         ("validation", "Every independent sample's estimate and interval against the brute-force rate.")):
-                L += _fig(results, figdir, f"extremes/{k}_{f}.png", c)
+            L += _figs(results, figdir, f"extremes/{k}_{{}}.png", (
+                ("threshold", "Threshold selection: mean residual life and parameter stability (pyextremes)."),
+                ("rate", "Exceedance rate from the first sample with its interval, and counted in the ensemble."),
+                ("validation", "Every independent sample's estimate and interval against the brute-force rate.")))
         ps = results / "splittime" / f"{k}.nc"
         if ps.exists():
             st = _open(ps)
@@ -227,11 +233,11 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
                          f"{float(d['capsize_rate_splittime']):.3g} | [{float(d['capsize_rate_lower']):.3g}, "
                          f"{float(d['capsize_rate_upper']):.3g}] | {'yes' if int(d['inside']) else 'no'} |")
             L.append("")
-            for f, c in (("crossings", "Non-rare problem: threshold crossings on a sample record (paper 003 Fig. 3)."),
-                         ("perturbation", "Motion perturbation at one crossing (paper 003 Fig. 4)."),
-                         ("metric", "Metric tail and fitted GPD, extrapolated to y = 1."),
-                         ("rate", "Capsize rate against the intermediate threshold, with the brute-force interval.")):
-                L += _fig(results, figdir, f"splittime/{k}_{f}.png", c)
+            L += _figs(results, figdir, f"splittime/{k}_{{}}.png", (
+                ("crossings", "Non-rare problem: threshold crossings on a sample record (paper 003 Fig. 3)."),
+                ("perturbation", "Motion perturbation at one crossing (paper 003 Fig. 4)."),
+                ("metric", "Metric tail and fitted GPD, extrapolated to y = 1."),
+                ("rate", "Capsize rate against the intermediate threshold, with the brute-force interval.")))
     return "\n".join(L)
 
 

@@ -83,7 +83,7 @@ def critical_perturbations(model: Model, records, steps, sides, window: int, dma
                            threads: int = 1, progress: bool = False):
     """Critical roll-rate perturbation [deg/s] for each crossing (record, step before the crossing,
     side +1/-1). Crossings of one record share its regenerated seaway; records run in parallel
-    threads (the RK4 kernel releases the GIL). Returns (delta, runs, unperturbed rate at the step)."""
+    threads (the RK4 kernel releases the GIL). Returns (delta [deg/s], bisection runs) per crossing."""
     from tqdm import tqdm
 
     args = kernel_args(model.sec, model.tables)
@@ -248,7 +248,7 @@ def perturbed_histories(model: Model, record: int, step: int, side: int, deltas,
         s = states[step].copy()
         s[4] += side * np.radians(d)
         buf = np.full((model.nsteps + 1, 6), np.nan)
-        end = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, step, n1, s, np.radians(90.0),
+        _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, step, n1, s, np.radians(90.0),
                         buf, np.empty((0, 6)))
         runs.append(np.degrees(buf[step: n1 + 1, 1]))
     base = np.full(len(t), np.nan)
