@@ -47,7 +47,7 @@ def main():
         ds = simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 1800.0, dt)
         cpu = time.process_time() - t0
         print(f"volume-based, {n:3d} stations: {cpu / 0.5:8.3f} CPU-s per simulated hour "
-              f"(30 min record incl. wave precomputation, roll std {np.degrees(ds['roll'].std()):.2f} deg)")
+              f"(30 min record incl. wave precomputation, roll std {float(ds['roll'].std()):.2f} deg)")
     tr = base.hull.get("transform", {})
     mesh = load_mesh(base.hull_file(), 1.0, False, tr.get("translate", [0, 0, 0]))
     h0, th0, _ = equilibrium(sec, float(st.volume), float(st.lcg), float(st.kg))

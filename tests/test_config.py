@@ -56,3 +56,54 @@ def test_bad_yaml_and_missing(tmp_path):
 def test_pipeline_configs_valid():
     for f in ["config.yaml", "test.yaml"]:
         assert load_pipeline(ROOT / "config" / f)["ships"]
+
+
+@pytest.mark.parametrize("text", ["8.6e6", "8.6E6", "8.6e+6", "86e5", "8600000.0"])
+def test_scientific_notation_is_a_number(tmp_path, ship_file, text):
+    """YAML 1.1 (PyYAML) reads 8.6e6 as a string; stabflow reads every config number as YAML 1.2
+    does, as the README's own example writes it."""
+    p = ship_file("dtmb5415")
+    lines = [ln for ln in p.read_text().splitlines()]
+    body = "\n".join(ln for ln in lines if not ln.strip().startswith("draft:"))
+    body = body.replace("loading:", f"loading:\n  mass: {text}\n  lcg: 0.0", 1)
+    p.write_text(body + "\n")
+    ship = load_ship(p)
+    assert ship.loading["mass"] == pytest.approx(8.6e6) and isinstance(ship.loading["mass"], float)
+
+
+def test_scientific_notation_in_pipeline_config(tmp_path):
+    """The same in the pipeline config, also through Snakemake's own loader (common.smk coerces)."""
+    import yaml
+
+    from stabflow.config import coerce_numbers, schema
+
+    text = (ROOT / "config" / "test.yaml").read_text().replace("hs: 3.5, tp: 10.0", "hs: 35e-1, tp: 1E+1")
+    raw = yaml.safe_load(text)
+    assert raw["ensembles"][0]["sea"]["hs"] == "35e-1"  # what PyYAML gives
+    (tmp_path / "c.yaml").write_text(text)
+    cfg = load_pipeline(tmp_path / "c.yaml")
+    assert cfg["ensembles"][0]["sea"]["hs"] == 3.5 and cfg["ensembles"][0]["sea"]["tp"] == 10.0
+    coerced = coerce_numbers(schema("config"), raw)
+    assert coerced["ensembles"][0]["sea"]["hs"] == 3.5
+    assert coerce_numbers(schema("config"), {"ships": ["1e5"]})["ships"] == ["1e5"]  # strings stay strings
+
+
+@pytest.mark.parametrize(
+    "transform,what",
+    [
+        ({"scale": 1000.0, "flip_z": False, "translate": [-71.0, 0.0, 0.0]}, "loading implausible"),  # millimetres
+        ({"scale": 1.0, "flip_z": True, "translate": [-71.0, 0.0, 0.0]}, "keel amidships"),  # wrong flip
+        ({"scale": 1.0, "flip_z": False, "translate": [100.0, 0.0, 0.0]}, "midships"),  # origin not midships
+        ({"scale": 1.0, "flip_z": False, "translate": [-71.0, 0.0, 4.0]}, "keel amidships"),  # keel off baseline
+    ],
+)
+def test_hull_frame_checked_after_transform(ship_file, transform, what):
+    """A mesh in millimetres, flipped, or shifted off the ship axes is rejected with one line naming
+    hull.transform (or the loading it makes absurd) and what was found; nothing is computed."""
+    from stabflow.hull import build_hull
+
+    p = ship_file("dtmb5415", hull__transform=transform)
+    with pytest.raises(StabflowError) as e:
+        build_hull(load_ship(p))
+    msg = str(e.value)
+    assert msg.startswith(f"{p}: hull.transform: ") and what in msg and "hull spans" in msg and "\n" not in msg

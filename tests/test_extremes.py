@@ -55,3 +55,27 @@ def test_declustering_keeps_one_peak_per_cluster_and_matches_pyextremes():
     eva = EVA(s)
     eva.get_extremes("POT", threshold=10.0, r=pd.Timedelta(seconds=100.0))
     np.testing.assert_allclose(np.sort(eva.extremes.to_numpy()), np.sort(mx))
+
+
+def test_failed_fit_is_nan_not_zero():
+    """Too few exceedances (or a failed fit) give NaN parameters and NaN rates, never a rate of 0."""
+    xi, sig = gpd_mle(np.array([0.5, 1.0]))
+    assert np.isnan(xi) and np.isnan(sig)
+    r = exceedance_rate([12.0, 15.0], 10.0, 2, 100.0, xi, sig)
+    assert np.all(np.isnan(r))
+
+
+def test_bootstrap_interval_ranks_unfittable_resamples_lowest():
+    """Resamples with too few exceedances (-inf) rank below the fitted ones: a few of them leave the
+    lower bound determined; past alpha/2 it is undetermined (NaN), never 0. Failed fits (NaN) are
+    left out and counted."""
+    from stabflow.extremes import bootstrap_interval
+
+    fitted = np.linspace(1.0, 2.0, 97)[:, None]
+    boots = np.vstack([fitted, [[-np.inf]], [[-np.inf]], [[np.nan]]])
+    lo, hi, few, failed = bootstrap_interval(boots, 0.05)
+    assert few == 2 and failed == 1
+    assert np.isfinite(lo[0]) and 1.0 <= lo[0] < 1.1 and hi[0] == pytest.approx(np.quantile(boots[:99], 0.975))
+    boots = np.vstack([fitted[:90], np.full((10, 1), -np.inf)])
+    lo, hi, few, failed = bootstrap_interval(boots, 0.05)
+    assert np.isnan(lo[0]) and np.isfinite(hi[0]) and few == 10

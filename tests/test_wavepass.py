@@ -6,7 +6,7 @@ import pytest
 from stabflow.config import load_ship
 from stabflow.hull import Sections, build_hull
 from stabflow.statics import compute_statics
-from stabflow.validation import _with_stations
+from stabflow.validation.statics import with_stations as _with_stations
 from stabflow.wavepass import crest_trough_calm, wave_gm, wave_gz, wave_pass
 
 from .conftest import SHIPS

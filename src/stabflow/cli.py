@@ -71,7 +71,9 @@ def run_waves(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, fig_gm=None, fi
     heel = np.round(np.arange(0.0, cfg["heel_max"] + 1e-9, cfg["heel_step"]), 10)
     ds = wave_pass(sec, V, lcg, kg, L, cfg["wavelength_ratios"], cfg["steepness"], cfg["crest_positions"], heel)
     ct = crest_trough_calm(sec, V, lcg, kg, L, cfg["crest_trough_steepness"], np.round(np.arange(0.0, 180.01, 1.0), 10))
+    unconverged = ds.attrs["unconverged_points"] + ct.attrs["unconverged_points"]
     ds = xr.merge([ds, ct.rename(heel="heel_full")], compat="override")
+    ds.attrs["unconverged_points"] = unconverged
     ds["heel_full"].attrs.update(units="degree", long_name="heel angle of the crest/trough/calm curves")
     ds.attrs.update(ship=ship.name, lwl=L, kg=kg, crest_trough_steepness=cfg["crest_trough_steepness"])
     if fig_gm:
@@ -177,7 +179,8 @@ def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_n
 def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
     """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
     from .io import write_netcdf
-    from .validation import checks_dataset, statics_checks
+    from .validation import checks_dataset
+    from .validation.statics import statics_checks
 
     ship = load_ship(ship_yaml)
     with xr.open_dataset(hull_nc) as h, xr.open_dataset(statics_nc) as s:
@@ -190,12 +193,50 @@ def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
 def run_validate_waves(ship_yaml, hull_nc, statics_nc, waves_nc, metric_nc, es_cfg: dict, out_nc) -> xr.Dataset:
     """validation of the waves and early-stage steps → NetCDF rows."""
     from .io import write_netcdf
-    from .validation import checks_dataset, waves_checks
+    from .validation import checks_dataset
+    from .validation.waves import waves_checks
 
     ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
     with xr.open_dataset(waves_nc) as w, xr.open_dataset(metric_nc) as m:
         waves, metric = w.load(), m.load()
     ds = checks_dataset(ship.name, "waves", waves_checks(ship, hull, st, waves, metric, es_cfg))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_dynamics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
+    """validation of the 3-DOF time-domain model → NetCDF rows."""
+    from .io import write_netcdf
+    from .validation import checks_dataset
+    from .validation.dynamics import dynamics_checks
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    ds = checks_dataset(ship.name, "dynamics", dynamics_checks(ship, hull, st))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def _open_optional(path):
+    if not path:
+        return None
+    with xr.open_dataset(path) as d:
+        return d.load()
+
+
+def run_validate_ensemble(ship_yaml, cond: dict, ensemble_nc, out_nc, extremes_nc=None, splittime_nc=None,
+                          hydro_nc=None) -> xr.Dataset:
+    """validation of an ensemble condition (seaway, step size) and of its extremes and split-time
+    estimates against the brute force → NetCDF rows (key ``<ship>_<condition>``)."""
+    from .ensemble import build_model
+    from .io import write_netcdf
+    from .validation import checks_dataset
+    from .validation.ensemble import ensemble_checks
+
+    model = build_model(load_ship(ship_yaml), cond, _open_optional(hydro_nc))
+    ens = _open_optional(ensemble_nc)
+    rows = ensemble_checks(model, ens, _open_optional(extremes_nc), _open_optional(splittime_nc))
+    ds = checks_dataset(model.ship.name, "ensemble", rows)
+    ds.attrs["condition"] = cond["name"]
     write_netcdf(ds, out_nc)
     return ds
 
@@ -341,6 +382,24 @@ def main(argv=None) -> int:
     s.add_argument("--hull", required=True)
     s.add_argument("--statics", required=True)
     s.add_argument("-o", "--output", required=True)
+    s = sub.add_parser("validate-waves", help="wave-pass and metric C validation checks → NetCDF")
+    s.add_argument("ship")
+    for a in ("--hull", "--statics", "--waves", "--metric", "-o"):
+        s.add_argument(a, required=True, **({"dest": "output"} if a == "-o" else {}))
+    s.add_argument("--config", default="config/config.yaml")
+    s = sub.add_parser("validate-dynamics", help="time-domain validation checks → NetCDF")
+    s.add_argument("ship")
+    s.add_argument("--hull", required=True)
+    s.add_argument("--statics", required=True)
+    s.add_argument("-o", "--output", required=True)
+    s = sub.add_parser("validate-ensemble", help="seaway, step-size, extremes and split-time checks → NetCDF")
+    s.add_argument("condition", help="<ship>_<name> of an ensembles entry")
+    s.add_argument("--ensemble", required=True)
+    s.add_argument("--extremes")
+    s.add_argument("--splittime")
+    s.add_argument("--hydro")
+    s.add_argument("--config", default="config/config.yaml")
+    s.add_argument("-o", "--output", required=True)
     s = sub.add_parser("report", help="build the HTML report from a results folder")
     s.add_argument("--config", default="config/config.yaml")
     s.add_argument("--results", default="results")
@@ -402,6 +461,17 @@ def main(argv=None) -> int:
                 run_rao(args.ship, args.hull, args.statics, load_pipeline(args.config)["rao"], args.condition, args.output)
             elif args.cmd == "validate":
                 run_validate_statics(args.ship, args.hull, args.statics, args.output)
+            elif args.cmd == "validate-waves":
+                from .config import load_pipeline
+
+                run_validate_waves(args.ship, args.hull, args.statics, args.waves, args.metric,
+                                   load_pipeline(args.config)["early_stage"], args.output)
+            elif args.cmd == "validate-dynamics":
+                run_validate_dynamics(args.ship, args.hull, args.statics, args.output)
+            elif args.cmd == "validate-ensemble":
+                cond, ship_yaml = _ensemble_condition(args.config, args.condition)
+                run_validate_ensemble(ship_yaml, cond, args.ensemble, args.output, args.extremes, args.splittime,
+                                      args.hydro)
             elif args.cmd == "report":
                 from .config import load_pipeline
                 from .report import build_report

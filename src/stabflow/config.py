@@ -7,6 +7,7 @@ every key's description, unit and default. Validation errors name the file and t
 from __future__ import annotations
 
 import copy
+import re
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -41,6 +42,35 @@ def _fill_defaults(sch: dict, data: Any) -> Any:
     return data
 
 
+# YAML 1.2 core-schema float (PyYAML implements YAML 1.1, which reads 8.6e6 and 1e-3 as strings
+# because it wants a decimal point and a signed exponent)
+_FLOAT_12 = re.compile(r"^[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?$")
+
+
+def _types(sch: dict) -> set:
+    t = sch.get("type", [])
+    return set([t] if isinstance(t, str) else t)
+
+
+def coerce_numbers(sch: dict, data: Any) -> Any:
+    """Read YAML 1.2 numbers that PyYAML left as strings (``8.6e6``, ``1E-3``), where the schema
+    wants a number: the config then means what a user typed, whichever YAML loader read it
+    (stabflow's or Snakemake's). Strings elsewhere are untouched."""
+    if isinstance(data, str) and _types(sch) & {"number", "integer"} and _FLOAT_12.match(data.strip()):
+        v = float(data)
+        return int(v) if "integer" in _types(sch) and "number" not in _types(sch) and v.is_integer() else v
+    if isinstance(data, list) and isinstance(sch.get("items"), dict):
+        return [coerce_numbers(sch["items"], d) for d in data]
+    if isinstance(data, dict):
+        props = sch.get("properties", {})
+        extra = sch.get("additionalProperties")
+        for k, v in data.items():
+            sub = props.get(k, extra if isinstance(extra, dict) else None)
+            if sub is not None:
+                data[k] = coerce_numbers(sub, v)
+    return data
+
+
 def validate(data: Any, name: str, source: str | Path) -> dict:
     """Validate ``data`` against schema ``name``; fill defaults.
 
@@ -50,6 +80,7 @@ def validate(data: Any, name: str, source: str | Path) -> dict:
         ``"<source>: <field.path>: <reason>"`` for the first error found.
     """
     sch = schema(name)
+    data = coerce_numbers(sch, copy.deepcopy(data))
     validator = jsonschema.Draft202012Validator(sch)
     errors = sorted(validator.iter_errors(data), key=lambda e: (len(e.path), list(map(str, e.path))))
     if errors:
@@ -61,7 +92,7 @@ def validate(data: Any, name: str, source: str | Path) -> dict:
                 "+".join(s.get("required", [])) for s in err.validator_value
             )
         raise StabflowError(f"{source}: {field}: {msg}")
-    return _fill_defaults(sch, copy.deepcopy(data))
+    return _fill_defaults(sch, data)
 
 
 def load_yaml(path: str | Path) -> Any:

@@ -36,6 +36,7 @@ from .waves.seaway import Seaway
 from .waves.synthesis import station_wave_table
 
 DOFS = ("heave", "roll", "pitch")
+SERIES = ("wave",) + DOFS  # spectra: wave elevation at midships and the three motions
 BATCH = 16  # records per parallel batch
 SPECTRUM_SEGMENT = 512  # Welch segment length [samples]
 
@@ -258,7 +259,7 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
             "crossing_threshold": ("crossing", cr[:, 1].astype(np.int64)),
             "crossing_side": ("crossing", cr[:, 2].astype(np.int8)),
             "crossing_time": ("crossing", cr[:, 3]),
-            "crossing_rate": ("crossing", cr[:, 4]),
+            "crossing_roll_rate": ("crossing", cr[:, 4]),
             "crossing_step": ("crossing", cr[:, 5].astype(np.int64)),
             "peak_record": ("peak", pk[:, 0].astype(np.int64)),
             "peak_time": ("peak", pk[:, 1].astype(np.float32)),
@@ -268,13 +269,15 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
             "envelope_peak_value": ("envelope_peak", ep[:, 2]),
             "acov_sum": ("lag", np.sum([p["acov"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
             "acov_count": ("lag", np.sum([p["acov_n"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
-            "psd_sum": (("series", "frequency"), np.sum(psds, axis=0) if psds else np.zeros((4, nfreq))),
             "psd_count": ((), len(psds)),
         },
         coords={"record": np.array(recs, np.int64), "dof": list(DOFS), "order": [1, 2, 3, 4],
                 "threshold": np.array(cond["thresholds_deg"], float), "lag": np.arange(maxlag + 1) * model.dt,
-                "series": ["wave", "heave", "roll", "pitch"], "frequency": freq},
+                "frequency": freq},
     )
+    psd_sum = np.sum(psds, axis=0) if psds else np.zeros((len(SERIES), nfreq))
+    for j, s in enumerate(SERIES):  # one variable per series: each carries its own units
+        ds[f"{s}_psd_sum"] = ("frequency", psd_sum[j])
     for k in DOFS:
         ds[f"hist_{k}"] = (f"{k}_bin", np.sum([p["hist"][k] for p in per], axis=0).astype(np.int64)
                            if per else np.zeros(len(edges[k]) - 1, np.int64))
@@ -320,7 +323,7 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     out = xr.concat([d[rec_vars] for d in shards], dim="record")
     for dim, names in ev.items():
         out = out.merge(xr.concat([d[names] for d in shards], dim=dim))
-    for v in ["acov_sum", "acov_count", "psd_sum", "psd_count"] + [f"hist_{k}" for k in DOFS]:
+    for v in ["acov_sum", "acov_count", "psd_count"] + [f"{s}_psd_sum" for s in SERIES] + [f"hist_{k}" for k in DOFS]:
         out[v] = sum(d[v] for d in shards)
     smp = [d[[v for v in d.data_vars if v.startswith("sample_")]] for d in shards if "sample" in d.dims]
     if smp:
@@ -334,13 +337,15 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     m2 = S.sel(order=2) / N - mean**2
     m3 = S.sel(order=3) / N - 3 * mean * S.sel(order=2) / N + 2 * mean**3
     m4 = S.sel(order=4) / N - 4 * mean * S.sel(order=3) / N + 6 * mean**2 * S.sel(order=2) / N - 3 * mean**4
-    out["mean"] = mean
-    out["std"] = np.sqrt(m2)
+    for k in DOFS:  # heave [m], roll and pitch [degree]: one variable each, with its units
+        out[f"{k}_mean"] = mean.sel(dof=k, drop=True)
+        out[f"{k}_std"] = np.sqrt(m2.sel(dof=k, drop=True))
     out["skewness"] = m3 / m2**1.5
     out["kurtosis"] = m4 / m2**2
     acf = out["acov_sum"] / out["acov_count"].where(out["acov_count"] > 0)
     out["roll_autocorrelation"] = acf / acf.isel(lag=0)
-    out["psd"] = out["psd_sum"] / max(int(out["psd_count"]), 1)
+    for s in SERIES:
+        out[f"{s}_psd"] = out[f"{s}_psd_sum"] / max(int(out["psd_count"]), 1)
     hours = float(out["steps"].sum()) * dt / 3600.0
     out["exposure_hours"] = ((), hours)
     out["capsize_count"] = ((), int(out["capsized"].sum()))

@@ -87,26 +87,55 @@ def pyextremes_fit(values, records, times, u: float, tau: float, duration: float
     return eva
 
 
+#: fewest exceedances for a GPD fit
+MIN_EXCEEDANCES = 3
+
+
 def gpd_mle(excess: np.ndarray) -> tuple[float, float]:
-    """(shape xi, scale sigma) of the GPD of ``excess`` (> 0), maximum likelihood, location 0."""
-    if len(excess) < 3:
+    """(shape xi, scale sigma) of the GPD of ``excess`` (> 0), maximum likelihood, location 0.
+    (NaN, NaN) when there are fewer than ``MIN_EXCEEDANCES`` or the optimiser fails."""
+    if len(excess) < MIN_EXCEEDANCES:
         return np.nan, np.nan
-    c, _, scale = stats.genpareto.fit(excess, floc=0.0)
+    try:
+        c, _, scale = stats.genpareto.fit(excess, floc=0.0)
+    except (RuntimeError, ValueError, FloatingPointError):
+        return np.nan, np.nan
+    if not (np.isfinite(c) and np.isfinite(scale) and scale > 0):
+        return np.nan, np.nan
     return float(c), float(scale)
 
 
 def exceedance_rate(x, u, n_u, hours, xi, sigma):
-    """lambda(x) = n_u / hours * P(X > x | X > u) [1/h]; exact counts below the threshold are not
-    modelled (x >= u)."""
+    """lambda(x) = n_u / hours * P(X > x | X > u) [1/h] for x >= u (exact counts below the
+    threshold are not modelled). NaN where the GPD could not be fitted (``xi`` NaN): a failed fit
+    is never a rate of zero."""
     x = np.asarray(x, float)
-    if not np.isfinite(xi) or n_u == 0:
-        return np.zeros_like(x)
+    if not np.isfinite(xi):
+        return np.full_like(x, np.nan)
     return n_u / hours * stats.genpareto.sf(np.maximum(x - u, 0.0), xi, scale=sigma)
+
+
+def bootstrap_interval(boots: np.ndarray, alpha: float):
+    """Percentile interval of bootstrap rates, rows = resamples. Resamples with too few exceedances
+    to fit (-inf) rank below every fitted one (fewer exceedances, lower rates): when they reach the
+    alpha/2 quantile the lower bound is undetermined (NaN). Fits that failed otherwise (NaN) are
+    left out. Returns (lower, upper, resamples too few, resamples failed)."""
+    few = np.isneginf(boots[:, 0])
+    failed = np.isnan(boots[:, 0])
+    ok = boots[~failed]
+    if len(ok) == 0:
+        n = boots.shape[1]
+        return np.full(n, np.nan), np.full(n, np.nan), int(few.sum()), int(failed.sum())
+    with np.errstate(invalid="ignore"):  # interpolating next to -inf: undetermined, made NaN below
+        lo, hi = np.quantile(ok, [alpha / 2, 1 - alpha / 2], axis=0)
+    lo = np.where(np.isfinite(lo), lo, np.nan)
+    hi = np.where(np.isfinite(hi), hi, np.nan)
+    return lo, hi, int(few.sum()), int(failed.sum())
 
 
 def estimate(maxima, recs, block_records, u, hours, xs, n_boot: int, alpha: float, rng):
     """Rates at ``xs`` from one sample's cluster maxima, with bootstrap-over-records intervals.
-    Returns (xi, sigma, n_u, rate, lo, hi)."""
+    Returns (xi, sigma, n_u, rate, lo, hi, resamples with too few exceedances, failed fits)."""
     exc = maxima - u
     xi, sig = gpd_mle(exc)
     rate = exceedance_rate(xs, u, len(exc), hours, xi, sig)
@@ -115,10 +144,13 @@ def estimate(maxima, recs, block_records, u, hours, xs, n_boot: int, alpha: floa
     for b in range(n_boot):
         pick = rng.choice(block_records, size=len(block_records), replace=True)
         e = np.concatenate([by_rec.get(r, np.zeros(0)) for r in pick])
+        if len(e) < MIN_EXCEEDANCES:
+            boots[b] = -np.inf
+            continue
         bx, bs = gpd_mle(e)
-        boots[b] = exceedance_rate(xs, u, len(e), hours, bx, bs) if np.isfinite(bx) else 0.0
-    lo, hi = np.quantile(boots, [alpha / 2, 1 - alpha / 2], axis=0)
-    return xi, sig, len(exc), rate, lo, hi
+        boots[b] = exceedance_rate(xs, u, len(e), hours, bx, bs)
+    lo, hi, few, failed = bootstrap_interval(boots, alpha)
+    return xi, sig, len(exc), rate, lo, hi, few, failed
 
 
 def block_sigma(ens: xr.Dataset, records: np.ndarray) -> float:
@@ -157,12 +189,12 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
         mx, mr, mt = decluster(er[inb], et[inb], ev[inb], u, tau)
         # the first sample also gets its curve on a grid for the figure (same bootstrap resamples)
         xg = np.linspace(u, max(targets.max(), u) * 1.15, 60) if b == 0 else np.zeros(0)
-        xi, sc, n_u, rate, lo, hi = estimate(mx, mr, recs, u, hours, np.concatenate([targets, xg]),
-                                             int(cfg["n_boot"]), cfg["alpha"], rng)
+        xi, sc, n_u, rate, lo, hi, few, failed = estimate(mx, mr, recs, u, hours, np.concatenate([targets, xg]),
+                                                          int(cfg["n_boot"]), cfg["alpha"], rng)
         nt = len(targets)
         r_g, lo_g, hi_g = rate[nt:], lo[nt:], hi[nt:]
         rate, lo, hi = rate[:nt], lo[:nt], hi[:nt]
-        if b == 0 and n_u >= 3:
+        if b == 0 and n_u >= MIN_EXCEEDANCES:
             # the reported fit of the first sample is pyextremes' own (the bootstrap refits use
             # scipy.stats.genpareto, the same maximum likelihood)
             eva = pyextremes_fit(mx, mr, mt, u, tau, duration)
@@ -174,7 +206,7 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
         bf_hours = float(hours_rec[~np.isin(rec_all, recs)].sum())
         bf = np.array([(bmx > x).sum() for x in targets]) / bf_hours
         rows.append(dict(u=u, sigma=sig, xi=xi, scale=sc, n_u=n_u, hours=hours, rate=rate, lo=lo, hi=hi, bf=bf,
-                         bf_hours=bf_hours))
+                         bf_hours=bf_hours, few=few, failed=failed))
         if b == 0:
             allmx, _, _ = decluster(er, et, ev, u, tau)
             gap = 2 * tau + 60.0
@@ -197,6 +229,8 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
             "rate_upper": (("block", "target"), R["hi"]),
             "rate_bruteforce": (("block", "target"), R["bf"]),
             "bruteforce_hours": ("block", R["bf_hours"]),
+            "bootstrap_too_few": ("block", R["few"]),
+            "bootstrap_failed": ("block", R["failed"]),
             "inside": (("block", "target"), inside.astype(np.int8)),
             "coverage": ("target", inside.mean(axis=0)),
             "rate_ratio": (("block", "target"), np.where(R["bf"] > 0, R["rate"] / np.where(R["bf"] > 0, R["bf"], 1), np.nan)),
@@ -204,7 +238,11 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
         coords={"block": np.arange(nblocks), "target": targets},
     )
     ds.attrs.update(ship=ens.attrs["ship"], condition=ens.attrs["condition"], envelope="Hilbert transform",
-                    declustering="pyextremes POT, window = decorrelation time", fit="GPD maximum likelihood (pyextremes)",
+                    declustering="runs within each record, window = decorrelation time (stabflow.extremes.decluster, "
+                                 "tested equal to pyextremes' POT declustering)",
+                    fit="GPD maximum likelihood, location fixed at the threshold: pyextremes (MLE) for the first "
+                        "sample's reported fit, scipy.stats.genpareto (the same likelihood) for the other samples "
+                        "and every bootstrap refit",
                     interval=f"bootstrap over records, {int(cfg['n_boot'])} resamples, {100 * (1 - cfg['alpha']):g} %",
                     threshold_sigma=float(cfg["threshold_sigma"]), records_per_block=per_block,
                     ensemble_hours=float(hours_rec.sum()))

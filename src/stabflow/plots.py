@@ -112,7 +112,7 @@ def roll_distribution(ens: xr.Dataset, path, title: str = ""):
     (seed 000 Figs 11-13): left, negative roll folded; right, positive roll."""
     c = ens["roll_bin"].values
     h = ens["hist_roll"].values.astype(float)
-    sig = float(ens["std"].sel(dof="roll"))
+    sig = float(ens["roll_std"])
     w = c[1] - c[0]
     pdf = h / (h.sum() * w) * sig  # density of roll / sigma
     x = c / sig
@@ -138,9 +138,9 @@ def response_spectra(ens: xr.Dataset, path, title: str = ""):
     """Mean encounter spectra of wave (midship), heave, roll and pitch."""
     units = {"wave": "m² s", "heave": "m² s", "roll": "deg² s", "pitch": "deg² s"}
     fig, axs = plt.subplots(2, 2, figsize=(9, 6), sharex=True)
-    for ax, s in zip(axs.flat, ens["series"].values):
-        ax.plot(ens["frequency"], ens["psd"].sel(series=s))
-        ax.set_ylabel(f"S_{s}(ω_e) [{units[str(s)]}]")
+    for ax, s in zip(axs.flat, units):
+        ax.plot(ens["frequency"], ens[f"{s}_psd"])
+        ax.set_ylabel(f"S_{s}(ω_e) [{units[s]}]")
         ax.set_xlim(0, 2.0)
         ax.grid(alpha=0.3)
     for ax in axs[1]:

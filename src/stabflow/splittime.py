@@ -162,7 +162,7 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
         m = (ens["crossing_threshold"].values == j) & np.isin(ens["crossing_record"].values, sample)
         rec = ens["crossing_record"].values[m]
         t = ens["crossing_time"].values[m]
-        rate_u = np.abs(ens["crossing_rate"].values[m])
+        rate_u = np.abs(ens["crossing_roll_rate"].values[m])
         side = ens["crossing_side"].values[m]
         step = ens["crossing_step"].values[m]
         delta, runs = critical_perturbations(model, rec, step, side, window, cfg["max_perturbation"],
@@ -223,7 +223,7 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
             "crossing_record": ("event", C[1].astype(np.int64)),
             "crossing_time": ("event", C[2]),
             "crossing_side": ("event", C[3].astype(np.int8)),
-            "crossing_rate": ("event", C[4]),
+            "crossing_roll_rate": ("event", C[4]),
             "critical_perturbation": ("event", C[5]),
             "metric": ("event", C[6]),
         },

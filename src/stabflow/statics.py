@@ -116,7 +116,7 @@ def particulars(sec: Sections, volume: float, lcg: float, kg: float, rho: float)
 def gz_curve(sec: Sections, volume: float, lcg: float, kg: float, heel_deg: np.ndarray) -> xr.Dataset:
     """GZ with free trim at each heel [degree] (0 to 180, inverted ship included).
 
-    Returns a Dataset with ``gz`` [m], ``heave`` [m] and ``trim`` [rad] along ``heel`` [degree].
+    Returns a Dataset with ``gz`` [m], ``heave`` [m] and ``trim`` [degree] along ``heel`` [degree].
     """
     heels = np.radians(np.asarray(heel_deg, dtype=np.float64))
     h0, th0, _ = equilibrium(sec, volume, lcg, kg, heel=float(heels[0]))
@@ -129,7 +129,7 @@ def gz_curve(sec: Sections, volume: float, lcg: float, kg: float, heel_deg: np.n
         if abs(V - volume) > 1e-6 * volume or abs(ex) > 1e-5 * sec.length:
             raise StabflowError(f"GZ: no equilibrium at heel {heel_deg[k]:.1f} deg")
     ds = xr.Dataset(
-        {"gz": ("heel", out[:, 0]), "heave": ("heel", out[:, 1]), "trim": ("heel", out[:, 2])},
+        {"gz": ("heel", out[:, 0]), "heave": ("heel", out[:, 1]), "trim": ("heel", np.degrees(out[:, 2]))},
         coords={"heel": np.asarray(heel_deg, dtype=np.float64)},
     )
     return annotate(ds)
@@ -160,7 +160,7 @@ def compute_statics(ship: Ship, hull: xr.Dataset) -> xr.Dataset:
     heel = np.round(np.arange(0.0, st["heel_max"] + 1e-9, st["heel_step"]), 10)
     ds = gz_curve(sec, ld["volume"], ld["lcg"], ld["kg"], heel)
     for k, v in p.items():
-        ds[k] = v
+        ds[k] = np.degrees(v) if k == "trim_upright" else v  # angles in degrees on disk
     for k, v in curve_summary(ds["gz"]).items():
         ds[k] = v
     # GM check from the GZ slope at zero heel (central difference on a small heel)

@@ -8,6 +8,8 @@ profile (eqs A12, A18-A19). GM(x_c) = KB(x_c) + I_X(x_c)/V - KG (eqs A22-A24).
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import xarray as xr
 
@@ -15,7 +17,7 @@ from . import StabflowError
 from ._kernels import _equilibrium, _gz_curve, _hydro_state
 from .hull import Sections
 from .io import annotate
-from .statics import TOL
+from .statics import TOL, StabilityWarning
 
 
 def wave_equilibrium(sec: Sections, volume, lcg, kg, amp, k, xc, guess=(None, None), heel=0.0):
@@ -113,7 +115,18 @@ def wave_pass(sec: Sections, volume, lcg, kg, lwl, ratios, steepness, n_crest, h
         coords={"wavelength_ratio": np.asarray(ratios, float), "steepness": np.asarray(steepness, float),
                 "crest_position": xc, "heel": np.asarray(heel_deg, float)},
     )
+    _flag_unconverged(ds, ["gz_wave"])
     return annotate(ds)
+
+
+def _flag_unconverged(ds: xr.Dataset, names) -> None:
+    """Count GZ points without an equilibrium (NaN), store the count as ``unconverged_points`` and
+    warn: such points are never silent (the validation rows that read them FAIL)."""
+    bad = sum(int(ds[n].isnull().sum()) for n in names)
+    ds.attrs["unconverged_points"] = bad
+    if bad:
+        warnings.warn(f"no equilibrium on the wave at {bad} GZ points ({', '.join(names)} are NaN there)",
+                      StabilityWarning, stacklevel=3)
 
 
 def crest_trough_calm(sec: Sections, volume, lcg, kg, lwl, steepness, heel_deg) -> xr.Dataset:
@@ -130,4 +143,5 @@ def crest_trough_calm(sec: Sections, volume, lcg, kg, lwl, steepness, heel_deg) 
         coords={"heel": np.asarray(heel_deg, float)},
         attrs={"crest_trough_steepness": steepness},
     )
+    _flag_unconverged(ds, ["gz_crest", "gz_trough", "gz_calm"])
     return annotate(ds)

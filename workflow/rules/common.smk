@@ -3,9 +3,11 @@ from pathlib import Path
 
 from snakemake.utils import validate
 
-from stabflow.config import load_ship
+from stabflow.config import coerce_numbers, load_ship, schema
 
 
+# numbers typed as 8.6e6 reach us as strings from Snakemake's YAML 1.1 loader: read them as numbers
+coerce_numbers(schema("config"), config)
 validate(config, "../schemas/config.schema.yaml")
 
 SHIPS_DIR = config.get("ships_dir", "config/ships")
@@ -91,9 +93,29 @@ def ensemble_shards(wildcards):
     return [f"{RESULTS}/ensemble/{wildcards.ens}/shard_{k}.nc" for k in range(n)]
 
 
+def ensemble_extremes(wildcards):
+    """The extremes result of an ensemble condition, if the extremes step analyses it."""
+    return [f"{RESULTS}/extremes/{wildcards.ens}.nc"] if wildcards.ens in config["extremes"]["conditions"] else []
+
+
+def ensemble_splittime(wildcards):
+    """The split-time result of an ensemble condition, if the split-time step analyses it."""
+    return [f"{RESULTS}/splittime/{wildcards.ens}.nc"] if wildcards.ens in config["splittime"]["conditions"] else []
+
+
+def validation_files():
+    """Every validation result: statics, waves and time domain per ship, one per ensemble condition."""
+    return (
+        per_ship(f"{RESULTS}/validation/{{ship}}_statics.nc")
+        + per_ship(f"{RESULTS}/validation/{{ship}}_waves.nc")
+        + per_ship(f"{RESULTS}/validation/{{ship}}_dynamics.nc")
+        + [f"{RESULTS}/validation/{k}_ensemble.nc" for k in ENSEMBLES]
+    )
+
+
 def report_sources():
-    """Hand-written report pages (report/*.md, report/_config.yml)."""
-    return sorted(str(p) for p in Path("report").glob("*") if p.is_file())
+    """Hand-written report pages and styles (report/*.md, report/_config.yml, report/_static/*)."""
+    return sorted(str(p) for p in Path("report").rglob("*") if p.is_file() and "_build" not in p.parts)
 
 
 def all_outputs():

@@ -7,7 +7,7 @@ rule report:
         wave_figures=per_ship(f"{RESULTS}/waves/{{ship}}_gm.png") + per_ship(f"{RESULTS}/waves/{{ship}}_gz_waves.png"),
         metric=f"{RESULTS}/waves/early_stage_C.csv",
         rao=per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc"),
-        validation=per_ship(f"{RESULTS}/validation/{{ship}}_statics.nc") + per_ship(f"{RESULTS}/validation/{{ship}}_waves.nc"),
+        validation=validation_files(),
         ensembles=[f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES],
         extremes=[f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]],
         splittime=[f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]],

@@ -36,3 +36,43 @@ rule validate_waves:
         "../envs/stabflow.yaml"
     script:
         "../scripts/validate_waves.py"
+
+
+rule validate_dynamics:
+    """3-DOF time domain: roll decay vs linear theory, pressure integration, linear frequency domain."""
+    input:
+        ship=ship_yaml,
+        hull=f"{RESULTS}/hull/{{ship}}.nc",
+        statics=f"{RESULTS}/statics/{{ship}}.nc",
+    output:
+        nc=f"{RESULTS}/validation/{{ship}}_dynamics.nc",
+    log:
+        f"{RESULTS}/logs/validation/{{ship}}_dynamics.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/validate_dynamics/{{ship}}.tsv"
+    conda:
+        "../envs/stabflow.yaml"
+    script:
+        "../scripts/validate_dynamics.py"
+
+
+rule validate_ensemble:
+    """Seaway statistics, step-size convergence, extremes coverage and split-time vs brute force."""
+    input:
+        ship=ensemble_ship_yaml,
+        ensemble=f"{RESULTS}/ensemble/{{ens}}/ensemble.nc",
+        extremes=ensemble_extremes,
+        splittime=ensemble_splittime,
+        hydro=ensemble_hydro,
+    output:
+        nc=f"{RESULTS}/validation/{{ens}}_ensemble.nc",
+    params:
+        cond=ensemble_condition,
+    log:
+        f"{RESULTS}/logs/validation/{{ens}}_ensemble.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/validate_ensemble/{{ens}}.tsv"
+    conda:
+        "../envs/stabflow.yaml"
+    script:
+        "../scripts/validate_ensemble.py"

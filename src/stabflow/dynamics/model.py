@@ -129,9 +129,9 @@ def parameters(co: Coefficients, rho: float, lcg: float, kg: float, heading_deg:
 
 
 def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves, heading_deg: float,
-             speed: float, duration: float, dt: float, *, dphi_dzdt: bool = False, phi0: float = 0.0,
+             speed: float, duration: float, dt: float, *, dphi_dzdt: bool = False, phi0_deg: float = 0.0,
              phi_cap_deg: float = 90.0, tables: SectionTables | None = None) -> xr.Dataset:
-    """Simulate one record from the calm-water equilibrium (optionally heeled to ``phi0`` [rad]).
+    """Simulate one record from the calm-water equilibrium (optionally heeled to ``phi0_deg``).
 
     Parameters
     ----------
@@ -143,12 +143,15 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
         Ship speed [m/s].
     duration, dt : float
         Record length and RK4 step [s].
+    phi0_deg, phi_cap_deg : float
+        Initial heel and the capsize angle that stops the record [degree].
     tables : SectionTables, optional
         Tabulated sectional properties (fast); default: exact clipping.
 
     Returns
     -------
-    xarray.Dataset with heave, roll, pitch (+ rates) and FK+HS loads along ``time`` [s]; attributes
+    xarray.Dataset along ``time`` [s]: heave [m] and heave rate [m/s], roll and pitch [degree] and
+    their rates [degree/s] (angles in degrees like every stabflow output), FK+HS loads; attributes
     ``capsized`` (0/1) and ``capsize_time`` [s] (record stops at the capsize angle, never NaN).
     """
     V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
@@ -162,7 +165,7 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     else:
         wtab = np.zeros((len(t_half), len(sec.x), 2))
     p = parameters(co, rho, lcg, kg, heading_deg)
-    s0 = np.array([h0, phi0, th0, 0.0, 0.0, 0.0])
+    s0 = np.array([h0, np.radians(phi0_deg), th0, 0.0, 0.0, 0.0])
     out = np.empty((nsteps + 1, 6))
     forces = np.empty((nsteps + 1, 6))
     done = _simulate(*kernel_args(sec, tables), p, wtab, dt, 0, nsteps, s0, np.radians(phi_cap_deg), out, forces)
@@ -170,8 +173,9 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     t = np.arange(n) * dt
     ds = xr.Dataset(
         {
-            "heave": ("time", out[:n, 0] - h0), "roll": ("time", out[:n, 1]), "pitch": ("time", out[:n, 2] - th0),
-            "heave_rate": ("time", out[:n, 3]), "roll_rate": ("time", out[:n, 4]), "pitch_rate": ("time", out[:n, 5]),
+            "heave": ("time", out[:n, 0] - h0), "roll": ("time", np.degrees(out[:n, 1])),
+            "pitch": ("time", np.degrees(out[:n, 2] - th0)), "heave_rate": ("time", out[:n, 3]),
+            "roll_rate": ("time", np.degrees(out[:n, 4])), "pitch_rate": ("time", np.degrees(out[:n, 5])),
             "fz": ("time", forces[:n, 2]), "mx": ("time", forces[:n, 3]), "my": ("time", forces[:n, 4]),
             "mz": ("time", forces[:n, 5]),
         },

@@ -41,7 +41,9 @@ def rao_sweep(sec, st, co, rho, lwl, ratios, steepness, heading_deg, speed, dt, 
         ds = simulate(sec, st, co, rho, regular(2 * a, lam), heading_deg, speed, dur, dt, dphi_dzdt=dphi_dzdt)
         t = ds["time"].values
         sel = t >= t[-1] - fit_periods * Te
-        amps = [first_harmonic(t[sel], ds[v].values[sel], we)[0] for v in ("heave", "roll", "pitch")]
+        # heave [m]; roll and pitch from degrees to radians for the slope-normalised RAOs
+        amps = [first_harmonic(t[sel], ds["heave"].values[sel], we)[0]]
+        amps += [first_harmonic(t[sel], np.radians(ds[v].values[sel]), we)[0] for v in ("roll", "pitch")]
         rows.append((amps[0] / a, amps[1] / (k * a), amps[2] / (k * a), we, ds.attrs["capsized"]))
     arr = np.array(rows)
     out = xr.Dataset(

@@ -40,17 +40,22 @@ def submerged(mesh: trimesh.Trimesh, phi: float, theta: float, h: float):
     return V, np.array([Ix, Iy, Iz]) / V
 
 
-def mesh_gz(mesh: trimesh.Trimesh, volume: float, lcg: float, kg: float, heel_deg, guess=None) -> np.ndarray:
+def mesh_gz(mesh: trimesh.Trimesh, volume: float, lcg: float, kg: float, heel_deg) -> np.ndarray:
     """Free-trim GZ [m] by exact integration over the mesh (reference for the sectional method).
 
-    ``guess`` is an optional (n, 2) array of (h, theta) starting points per heel.
+    Independent of stabflow's sections and equilibrium: at each heel the height is first bracketed
+    and solved alone (brentq on the displaced volume at the current trim, from fully dry to fully
+    immersed), then height and trim together (fsolve, volume and the longitudinal G-B offset),
+    starting from the previous heel's trim. A heel where either solve fails raises ``RuntimeError``.
     """
-    from scipy.optimize import fsolve
+    from scipy.optimize import brentq, fsolve
 
     L = float(np.ptp(mesh.vertices[:, 0]))
+    zs = np.asarray(mesh.vertices, float)
+    r = float(np.sqrt((zs**2).sum(axis=1).max()))  # any rotation keeps the hull within +-r
     out = []
-    prev = None
-    for k, hd in enumerate(np.atleast_1d(heel_deg)):
+    theta = 0.0
+    for hd in np.atleast_1d(heel_deg):
         phi = np.radians(hd)
 
         def F(p):
@@ -58,9 +63,12 @@ def mesh_gz(mesh: trimesh.Trimesh, volume: float, lcg: float, kg: float, heel_de
             G = earth_vertices(np.array([[lcg, 0.0, kg]]), phi, p[1], p[0])[0]
             return [(V - volume) / volume, (c[0] - G[0]) / L]
 
-        x0 = guess[k] if guess is not None else (prev if prev is not None else [0.0, 0.0])
-        sol = fsolve(F, x0, xtol=1e-11)
-        prev = sol
+        h0 = brentq(lambda h: submerged(mesh, phi, theta, h)[0] - volume, -r, r, xtol=1e-12 * r)
+        sol, info, ier, msg = fsolve(F, [h0, theta], xtol=1e-11, full_output=True)
+        res = np.abs(F(sol))
+        if ier != 1 or res.max() > 1e-8:
+            raise RuntimeError(f"mesh_gz: no free-trim equilibrium at heel {hd:g} deg ({msg.strip()}; residual {res.max():.2e})")
+        theta = float(sol[1])
         V, c = submerged(mesh, phi, sol[1], sol[0])
         G = earth_vertices(np.array([[lcg, 0.0, kg]]), phi, sol[1], sol[0])[0]
         out.append(G[1] - c[1])

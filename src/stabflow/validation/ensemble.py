@@ -1,0 +1,395 @@
+"""Irregular-sea checks: the seaway, the RK4 step, the extremes and the split-time estimates.
+
+| check | reference | tolerance | kind |
+|---|---|---|---|
+| seaway: elevation variance | analytic m0 = Hs^2 / 16 of the target spectrum | 3 % | independent |
+| seaway: Welch spectral density over the energetic band (S > 0.3 max) | analytic target S(w) | 15 % | independent |
+| seaway: skewness, excess kurtosis of the elevation | Gaussian sea (0, 0) | 0.05, 0.1 | independent |
+| seaway: largest distance of the elevation's CDF from the normal CDF (-3 to 3 sigma) | standard normal | 0.01 | independent |
+| ensemble records regenerated from (seed, record) | the ensemble's stored per-record moment sums | 1e-9 (relative) | consistency |
+| step size: roll standard deviation at dt vs dt / 5 | the same records at dt / 5 | 0.5 % | consistency |
+| step size: 0.999 quantile of abs(roll) at dt vs dt / 5 | the same records at dt / 5 | 1 % | consistency |
+| extremes, per target angle: coverage of the brute-force rate by the interval over the samples | brute-force count of the declustered envelope maxima in the rest of the ensemble | >= 0.90 | independent |
+| extremes, per target angle: median over the samples of estimate / brute force | the same brute-force count | 0.7 to 1.4 | independent |
+| split-time, per threshold: brute-force rate inside the interval (1 / 0) | capsized records among the other records (Garwood interval) | = 1 | independent |
+| split-time, per threshold: split-time rate / brute-force rate | the same brute-force count | 0.7 to 1.4 | independent |
+
+Seaway
+    The elevation of the condition's own seaway (``Seaway.components(seed, r)``, records
+    0, 1, ...) is synthesised by ``station_wave_table`` at a fixed point (no forward speed, so the
+    frequencies are the absolute ones of the target spectrum), sampled every 0.5 s, over at least
+    40 records and at least 20 hours: the method and the tolerances of ``tests/waves/test_seaway.py``
+    (Welch segments of 512 samples = 256 s, Hann window, averaged over records).
+Step size
+    The first ``CONVERGENCE_RECORDS`` records of the ensemble that did not capsize are simulated
+    again through ``run_shard`` at the condition's step dt and at dt / 5. Roll standard deviation
+    and the 0.999 quantile of abs(roll) (folded roll histogram, ``quantile_from_histogram``) at dt
+    are compared with those at dt / 5. The run at dt is also compared with the ensemble's own
+    per-record moment sums: ``model`` must be the model of ``ens`` (records regenerate bit for bit),
+    otherwise none of the other rows would describe ``ens``.
+Extremes, split-time
+    Taken from the datasets of those steps (``extremes.analyse``, ``splittime.analyse``). A target
+    or threshold whose brute-force count is zero has nothing to be compared with: its rows are FAIL
+    with that reason, never NaN. A step that does not run for the condition (dataset ``None``) gives
+    SKIPPED rows with that reason.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+
+import numpy as np
+import xarray as xr
+from scipy import signal, stats
+
+from ..ensemble import merge, quantile_from_histogram, run_shard
+from ..waves.synthesis import station_wave_table
+from . import Check, run_check
+
+#: seaway: records and hours of elevation at least (tests/waves/test_seaway.py: 40 x 30 min)
+SEAWAY_RECORDS = 40
+SEAWAY_HOURS = 20.0
+SEAWAY_DT = 0.5  # sampling step of the elevation [s] (smaller if the spectrum reaches beyond 0.8 pi / dt)
+SEAWAY_SEGMENT_S = 256.0  # Welch segment [s] (512 samples at 0.5 s)
+TOL_VARIANCE = 3.0  # %
+TOL_DENSITY = 15.0  # % over S > 0.3 max S
+ENERGETIC = 0.3  # fraction of the spectral peak that defines the energetic band
+TOL_SKEWNESS = 0.05
+TOL_EXCESS_KURTOSIS = 0.1
+TOL_CDF = 0.01  # largest |F_n(q) - Phi(q)|, q = -3 ... 3 sigma
+
+#: step size: records, refinement, tolerances (measured: see the module's report rows;
+#: benchmarks/bench_ensemble.py, DTMB 5415 SS8: sigma and q0.999 within 0.5 % at 0.5 s vs 0.1 s)
+CONVERGENCE_RECORDS = 40
+REFINE = 5
+TOL_SIGMA = 0.5  # %
+TOL_Q999 = 1.0  # %
+TOL_REGENERATION = 1e-9  # relative, per (dof, moment order)
+
+#: extremes and split-time acceptance (the criterion set for the statistics of the project)
+MIN_COVERAGE = 0.90
+RATIO_BAND = (0.7, 1.4)
+
+
+def _pct(text: str, default: str = "95 %") -> str:
+    """The confidence level written in an ``interval`` attribute ('..., 95 %'), or ``default``."""
+    m = re.search(r"(\d+(?:\.\d+)?)\s*%", text or "")
+    return f"{m.group(1)} %" if m else default
+
+
+# --------------------------------------------------------------------------------------------
+# seaway
+
+
+def seaway_elevation(model, records: int | None = None, dt: float | None = None) -> tuple[np.ndarray, float]:
+    """Elevation [m] of the condition's seaway at a fixed point, records 0, 1, ... of its master seed.
+
+    Parameters
+    ----------
+    model : stabflow.ensemble.Model
+        The condition (``model.sea``, ``model.cond['seed']``, ``model.cond['duration']``).
+    records : int, optional
+        Number of records; default: at least ``SEAWAY_RECORDS`` and ``SEAWAY_HOURS`` hours.
+    dt : float, optional
+        Sampling step [s]; default ``SEAWAY_DT``, reduced so that the Nyquist frequency pi / dt is at
+        least 1.25 times the highest component frequency.
+
+    Returns
+    -------
+    eta : ndarray, shape (records, samples)
+        Elevation, one row per record.
+    dt : float
+        The sampling step used [s].
+    """
+    duration = float(model.cond["duration"])
+    if records is None:
+        records = max(SEAWAY_RECORDS, int(np.ceil(SEAWAY_HOURS * 3600.0 / duration)))
+    if dt is None:
+        wmax = float(model.sea.edges()[-1])
+        dt = min(SEAWAY_DT, np.pi / (1.25 * wmax))
+    t = np.arange(0.0, duration, dt)
+    seed = int(model.cond["seed"])
+    rows = []
+    for r in range(records):
+        a, w, p = model.sea.components(seed, r)
+        rows.append(station_wave_table(a, w, p, np.array([0.0]), 0.0, 0.0, t)[:, 0, 0])
+    return np.array(rows), dt
+
+
+def seaway_checks(model) -> list[Check]:
+    """Variance, spectral density and Gaussian marginal of the condition's seaway against the
+    analytic target spectrum (independent rows; see the module docstring)."""
+    sea = model.sea
+    spec = f"{sea.kind} Hs {sea.hs:g} m" + (f", Tp {sea.tp:g} s" if sea.tp is not None else "")
+    names = {
+        "var": ("seaway: elevation variance vs Hs^2/16", "%", f"analytic m0 = Hs^2/16 ({spec})", dict(tolerance=TOL_VARIANCE)),
+        "psd": (f"seaway: Welch spectral density vs S(w), largest deviation over S > {ENERGETIC:g} max", "%",
+                f"analytic target spectrum S(w) ({spec})", dict(tolerance=TOL_DENSITY)),
+        "skew": ("seaway: elevation skewness", "-", "Gaussian sea: 0", dict(tolerance=TOL_SKEWNESS)),
+        "kurt": ("seaway: elevation excess kurtosis", "-", "Gaussian sea: 0", dict(tolerance=TOL_EXCESS_KURTOSIS)),
+        "cdf": ("seaway: largest distance of the elevation CDF from the normal CDF (-3 to 3 sigma)", "-",
+                "standard normal CDF (scipy.stats.norm)", dict(tolerance=TOL_CDF)),
+    }
+    try:
+        eta, dt = seaway_elevation(model)
+    except Exception as exc:  # noqa: BLE001 - every row says why it could not run
+        return [Check.failed(n, f"seaway synthesis failed: {type(exc).__name__}: {exc}", u, ref, **band)
+                for n, u, ref, band in names.values()]
+    nrec, nsamp = eta.shape
+    what = f" ({nrec} records x {nsamp * dt:g} s, sampled every {dt:g} s)"
+    x = eta.ravel()
+
+    def variance():
+        return 100.0 * (x.var() / (sea.hs**2 / 16.0) - 1.0)
+
+    def density():
+        nseg = min(1 << int(round(np.log2(SEAWAY_SEGMENT_S / dt))), 1 << int(np.log2(nsamp)))
+        f, p = signal.welch(eta, fs=1.0 / dt, nperseg=nseg)
+        w, S = 2 * np.pi * f, p.mean(axis=0) / (2 * np.pi)
+        target = sea.density(w)
+        band = target > ENERGETIC * target.max()
+        if not band.any():
+            raise ValueError("no frequency of the Welch estimate lies in the energetic band")
+        return 100.0 * np.max(np.abs(S[band] / target[band] - 1.0))
+
+    z = (x - x.mean()) / x.std()
+
+    def cdf_distance():
+        q = np.linspace(-3.0, 3.0, 61)
+        return np.max(np.abs(np.searchsorted(np.sort(z), q) / len(z) - stats.norm.cdf(q)))
+
+    fns = {"var": variance, "psd": density, "skew": lambda: stats.skew(z), "kurt": lambda: stats.kurtosis(z),
+           "cdf": cdf_distance}
+    return [run_check(fns[k], n + what, u, ref, "independent", **band) for k, (n, u, ref, band) in names.items()]
+
+
+# --------------------------------------------------------------------------------------------
+# step size
+
+
+def roll_q999(ens: xr.Dataset) -> float:
+    """0.999 quantile of abs(roll) [degree] from the ensemble's roll histogram folded about 0."""
+    h = ens["hist_roll"].values
+    c = ens["roll_bin"].values
+    half = len(h) // 2
+    if len(h) % 2 or not np.allclose(c[half:], -c[:half][::-1]):
+        raise ValueError("roll histogram bins are not symmetric about 0")
+    return quantile_from_histogram(h[half:] + h[:half][::-1], c[half:], 0.999)
+
+
+def _rerun(model, dt: float, records) -> xr.Dataset:
+    """Merged ensemble of ``records`` re-simulated at step ``dt`` (no time histories kept)."""
+    m = dataclasses.replace(model, cond=dict(model.cond, dt=dt, samples=0))
+    return merge([run_shard(m, np.asarray(records), progress=False)])
+
+
+def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS) -> list[Check]:
+    """Regeneration and step-size convergence rows (consistency; see the module docstring).
+
+    The first ``records`` records of ``ens`` are simulated again at the condition's dt and at
+    dt / ``REFINE``. Whether a record that comes close to capsizing does capsize depends on any
+    perturbation, round-off included (barge beam sea, 200 records: 19 capsizes at dt = 0.5, 0.25,
+    0.1 and 0.05 s, but not all the same records), so the statistics are compared over the records
+    that capsize at neither step; the capsize counts at both steps are written in the reference.
+    """
+    dt = model.dt
+    fine = dt / REFINE
+    rows_spec = {
+        "reg": ("ensemble records regenerated from (seed, record) at dt = {dt:g} s ({n} records): largest relative "
+                "difference of the moment sums", "-", "per-record moment sums stored in the ensemble dataset",
+                dict(tolerance=TOL_REGENERATION)),
+        "sig": ("step size: roll standard deviation at dt = {dt:g} s vs dt = {fine:g} s ({n} records)", "%",
+                "the same records (same seaways) at dt / {r} = {fine:g} s", dict(tolerance=TOL_SIGMA)),
+        "q": ("step size: 0.999 quantile of |roll| at dt = {dt:g} s vs dt = {fine:g} s ({n} records)", "%",
+              "the same records (same seaways) at dt / {r} = {fine:g} s", dict(tolerance=TOL_Q999)),
+    }
+
+    def spec(key, n, extra=""):
+        name, unit, ref, band = rows_spec[key]
+        return name.format(dt=dt, fine=fine, n=n), unit, ref.format(r=REFINE, fine=fine) + extra, band
+
+    n = "?"
+    try:
+        recs = ens["record"].values[:records]
+        n = len(recs)
+        if n == 0:
+            raise ValueError("the ensemble has no record")
+        a = _rerun(model, dt, recs)
+        b = _rerun(model, fine, recs)
+    except Exception as exc:  # noqa: BLE001 - every row says why it could not run
+        why = f"re-simulation failed: {type(exc).__name__}: {exc}"
+        return [Check.failed(nm, why, u, ref, "consistency", **band) for nm, u, ref, band in
+                (spec(k, n) for k in rows_spec)]
+
+    def regeneration():
+        mine = a["moment_sums"].values
+        stored = ens["moment_sums"].sel(record=recs).values
+        scale = np.abs(stored).max(axis=0)
+        return float(np.max(np.abs(mine - stored).max(axis=0) / np.where(scale > 0, scale, 1.0)))
+
+    nm, u, ref, band = spec("reg", n)
+    rows = [run_check(regeneration, nm, u, ref, "consistency", **band)]
+
+    ca, cb = a["capsized"].values != 0, b["capsized"].values != 0
+    keep = recs[~ca & ~cb]
+    extra = (f"; capsized records: {int(ca.sum())} at dt = {dt:g} s, {int(cb.sum())} at dt = {fine:g} s, "
+             f"{int((ca | cb).sum())} left out")
+    try:
+        if len(keep) == 0:
+            raise ValueError(f"all {n} records capsized at dt = {dt:g} s or at dt = {fine:g} s")
+        if len(keep) < n:
+            a, b = _rerun(model, dt, keep), _rerun(model, fine, keep)
+        sa, sb = float(a["roll_std"]), float(b["roll_std"])
+        qa, qb = roll_q999(a), roll_q999(b)
+    except Exception as exc:  # noqa: BLE001
+        why = f"{type(exc).__name__}: {exc}"
+        return rows + [Check.failed(nm, why, u, ref, "consistency", **band) for nm, u, ref, band in
+                       (spec(k, len(keep), extra) for k in ("sig", "q"))]
+    for key, v, v_ref in (("sig", sa, sb), ("q", qa, qb)):
+        nm, u, ref, band = spec(key, len(keep), extra + f": {v_ref:.4g} degree (at dt = {dt:g} s: {v:.4g} degree)")
+        rows.append(run_check(lambda v=v, v_ref=v_ref: 100.0 * (v / v_ref - 1.0), nm, u, ref, "consistency", **band))
+    return rows
+
+
+# --------------------------------------------------------------------------------------------
+# extremes and split-time
+
+
+def extremes_checks(extremes: xr.Dataset | None) -> list[Check]:
+    """Per target roll angle: coverage of the brute-force rate and median ratio (independent)."""
+    lo, hi = RATIO_BAND
+    cov_name = "extremes: coverage of the brute-force rate by the {pct} interval over {n} samples"
+    rat_name = "extremes: median over the samples of estimate / brute-force rate"
+    ref = "brute-force count of declustered envelope maxima in the rest of the ensemble"
+    if extremes is None:
+        why = "the extremes step does not run for this condition (not in extremes.conditions)"
+        return [Check.not_applicable(cov_name.format(pct="95 %", n="N"), why, "-", ref),
+                Check.not_applicable(rat_name, why, "-", ref)]
+    try:
+        targets = np.atleast_1d(extremes["target"].values).astype(float)
+        nblk = int(extremes.sizes["block"])
+        pct = _pct(extremes.attrs.get("interval", ""))
+        hours = float(np.mean(extremes["bruteforce_hours"].values)) if "bruteforce_hours" in extremes else np.nan
+    except Exception as exc:  # noqa: BLE001
+        why = f"extremes dataset unreadable: {type(exc).__name__}: {exc}"
+        return [Check.failed(cov_name.format(pct="95 %", n="N"), why, "-", ref, lower=MIN_COVERAGE),
+                Check.failed(rat_name, why, "-", ref, lower=lo, upper=hi)]
+    if np.isfinite(hours):
+        ref = f"brute-force count of declustered envelope maxima in the rest of the ensemble ({hours:.0f} h per sample)"
+    rows = []
+    for x in targets:
+        tag = f"extremes {x:g} deg: "
+        cname = tag + cov_name.split(": ", 1)[1].format(pct=pct, n=nblk)
+        rname = tag + rat_name.split(": ", 1)[1]
+        try:
+            sel = extremes.sel(target=x)
+            bf = np.asarray(sel["rate_bruteforce"].values, float)
+            est = np.asarray(sel["rate_estimate"].values, float)
+            cov = float(sel["coverage"])
+        except Exception as exc:  # noqa: BLE001
+            why = f"{type(exc).__name__}: {exc}"
+            rows += [Check.failed(cname, why, "-", ref, lower=MIN_COVERAGE), Check.failed(rname, why, "-", ref, lower=lo, upper=hi)]
+            continue
+        if not np.any(bf > 0):
+            why = (f"the brute force counted no exceedance of {x:g} deg in any of the {nblk} samples: "
+                   "no rate to compare with")
+            rows += [Check.failed(cname, why, "-", ref, lower=MIN_COVERAGE), Check.failed(rname, why, "-", ref, lower=lo, upper=hi)]
+            continue
+        if np.isfinite(cov):
+            rows.append(Check(cname, cov, np.nan, "-", ref, lower=MIN_COVERAGE))
+        else:
+            rows.append(Check.failed(cname, "coverage is NaN", "-", ref, lower=MIN_COVERAGE))
+        ok = bf > 0
+        ratio = np.where(ok, est / np.where(ok, bf, 1.0), np.nan)
+        fin = np.isfinite(ratio)
+        rname_n = rname + (f" ({fin.sum()} of {nblk} samples with a brute-force count)" if fin.sum() < nblk else "")
+        if not fin.any():
+            rows.append(Check.failed(rname_n, f"estimate / brute force is NaN in every sample (estimates {est.tolist()})",
+                                     "-", ref, lower=lo, upper=hi))
+        else:
+            rows.append(Check(rname_n, float(np.median(ratio[fin])), np.nan, "-", ref, lower=lo, upper=hi))
+    return rows
+
+
+def splittime_checks(splittime: xr.Dataset | None) -> list[Check]:
+    """Per threshold: brute-force rate inside the interval, and split-time / brute-force (independent)."""
+    lo, hi = RATIO_BAND
+    in_name = "split-time: brute-force capsize rate inside the {pct} interval (1 yes, 0 no)"
+    rat_name = "split-time: capsize rate / brute-force rate"
+    ref = "brute force: capsized records among the other records of the ensemble"
+    if splittime is None:
+        why = "the split-time step does not run for this condition (not in splittime.conditions)"
+        return [Check.not_applicable(in_name.format(pct="95 %"), why, "-", ref),
+                Check.not_applicable(rat_name, why, "-", ref)]
+    try:
+        thresholds = np.atleast_1d(splittime["split_threshold"].values).astype(float)
+        pct = _pct(splittime.attrs.get("interval", ""))
+        k = int(splittime["bruteforce_capsizes"])
+        bf = float(splittime["capsize_rate_bruteforce"])
+        bf_h = float(splittime["bruteforce_hours"]) if "bruteforce_hours" in splittime else np.nan
+        bf_lo = float(splittime["capsize_rate_bruteforce_lower"]) if "capsize_rate_bruteforce_lower" in splittime else np.nan
+        bf_hi = float(splittime["capsize_rate_bruteforce_upper"]) if "capsize_rate_bruteforce_upper" in splittime else np.nan
+    except Exception as exc:  # noqa: BLE001
+        why = f"split-time dataset unreadable: {type(exc).__name__}: {exc}"
+        return [Check.failed(in_name.format(pct="95 %"), why, "-", ref, lower=1.0, upper=1.0),
+                Check.failed(rat_name, why, "-", ref, lower=lo, upper=hi)]
+    ref = (f"brute force: {k} capsized records in {bf_h:.0f} h of the other records, {bf:.3g} /h "
+           f"(Garwood {pct} [{bf_lo:.3g}, {bf_hi:.3g}] /h)")
+    rows = []
+    for thr in thresholds:
+        tag = f"split-time {thr:g} deg: "
+        iname = tag + in_name.split(": ", 1)[1].format(pct=pct)
+        rname = tag + rat_name.split(": ", 1)[1]
+        if k == 0 or not bf > 0:
+            why = (f"the brute force counted no capsize in {bf_h:.0f} h of the other records: "
+                   "no rate to compare with")
+            rows += [Check.failed(iname, why, "-", ref, lower=1.0, upper=1.0),
+                     Check.failed(rname, why, "-", ref, lower=lo, upper=hi)]
+            continue
+        try:
+            s = splittime.sel(split_threshold=thr)
+            lam = float(s["capsize_rate_splittime"])
+            lam_lo, lam_hi = float(s["capsize_rate_lower"]), float(s["capsize_rate_upper"])
+        except Exception as exc:  # noqa: BLE001
+            why = f"{type(exc).__name__}: {exc}"
+            rows += [Check.failed(iname, why, "-", ref, lower=1.0, upper=1.0),
+                     Check.failed(rname, why, "-", ref, lower=lo, upper=hi)]
+            continue
+        iname += f" [{lam_lo:.3g}, {lam_hi:.3g}] /h"
+        if np.isfinite(lam_lo) and np.isfinite(lam_hi):
+            rows.append(Check(iname, float(lam_lo <= bf <= lam_hi), np.nan, "-", ref, lower=1.0, upper=1.0))
+        else:
+            rows.append(Check.failed(iname, "the split-time interval is NaN", "-", ref, lower=1.0, upper=1.0))
+        rname += f" ({lam:.3g} /h vs {bf:.3g} /h)"
+        if np.isfinite(lam):
+            rows.append(Check(rname, lam / bf, np.nan, "-", ref, lower=lo, upper=hi))
+        else:
+            rows.append(Check.failed(rname, "the split-time capsize rate is NaN", "-", ref, lower=lo, upper=hi))
+    return rows
+
+
+def ensemble_checks(model, ens: xr.Dataset, extremes: xr.Dataset | None = None,
+                    splittime: xr.Dataset | None = None) -> list[Check]:
+    """All irregular-sea validation rows of one condition.
+
+    Parameters
+    ----------
+    model : stabflow.ensemble.Model
+        ``build_model(ship, cond)`` of the condition.
+    ens : xarray.Dataset
+        The condition's merged ensemble (``results/ensemble/<ship>_<cond>/ensemble.nc``).
+    extremes : xarray.Dataset, optional
+        The extremes step's dataset (``stabflow.extremes.analyse``); ``None`` when that step does
+        not run for the condition (its rows are SKIPPED with that reason).
+    splittime : xarray.Dataset, optional
+        The split-time step's dataset (``stabflow.splittime.analyse``); ``None`` likewise.
+
+    Returns
+    -------
+    list of Check
+        Seaway rows, regeneration and step-size rows, then extremes rows (two per target angle) and
+        split-time rows (two per threshold); see the module docstring for references, tolerances and
+        kinds. A row that cannot be computed is a FAIL row with the reason.
+    """
+    return seaway_checks(model) + step_checks(model, ens) + extremes_checks(extremes) + splittime_checks(splittime)

@@ -1,0 +1,12 @@
+"""Snakemake script for validate_ensemble (same as `stabflow validate-ensemble`)."""
+from stabflow.cli import run_validate_ensemble
+
+i = snakemake.input
+
+
+def first(files):
+    return files[0] if files else None
+
+
+run_validate_ensemble(i.ship, dict(snakemake.params.cond), i.ensemble, snakemake.output.nc, first(i.extremes),
+                      first(i.splittime), first(i.hydro))
