@@ -20,7 +20,7 @@ def test_first_harmonic_exact():
 
 @pytest.mark.parametrize("ratio", [1.0, 1.5, 2.0, 3.0])
 def test_small_waves_match_linear_frequency_domain(barge, ratio):
-    """Heave, roll and pitch amplitudes within 5 % of [-w^2 M + i w B + C] X = F_FK, where F_FK is
+    """Heave, roll and pitch amplitudes within 4 % of [-w^2 M + i w B + C] X = F_FK, where F_FK is
     the pressure-integrated (decay off) excitation on the fixed barge, stern-quartering 45 deg,
     H/lambda = 1/2000 (linear regime; at 1/200 the heave-roll coupling near roll resonance,
     lambda/L = 3, already shifts roll by 7 %)."""
@@ -42,7 +42,7 @@ def test_small_waves_match_linear_frequency_domain(barge, ratio):
     sel = t >= t[-1] - 10 * Te
     td = np.array([first_harmonic(t[sel], ds["heave"].values[sel], we)[0]]
                   + [first_harmonic(t[sel], np.radians(ds[n].values[sel]), we)[0] for n in ("roll", "pitch")])
-    assert td == pytest.approx(X, rel=0.05)
+    assert td == pytest.approx(X, rel=0.04)  # README: < 4 % with the pressure-integrated excitation
 
 
 def test_rao_sweep_long_wave_limits(barge):

@@ -41,10 +41,10 @@ def test_roll_decay_period_and_decrement(barge):
     T = np.diff(tp).mean()
     Tn = 2 * np.pi * np.sqrt((co.i44 + co.a44) / (ship.rho * 9.80665 * float(st.volume) * float(st.gm)))
     zeta = co.b44 / (2 * np.sqrt((co.i44 + co.a44) * co.c44))
-    assert T == pytest.approx(Tn / np.sqrt(1 - zeta**2), rel=0.01)
+    assert T == pytest.approx(Tn / np.sqrt(1 - zeta**2), rel=1e-3)  # README: < 0.1 %
     assert T == pytest.approx(Tn, rel=0.01)
     logdec = np.log(r[pk][:-1] / r[pk][1:]).mean()
-    assert logdec == pytest.approx(2 * np.pi * zeta / np.sqrt(1 - zeta**2), rel=0.01)
+    assert logdec == pytest.approx(2 * np.pi * zeta / np.sqrt(1 - zeta**2), rel=1e-3)  # README: < 0.1 %
 
 
 def test_capsize_stops_cleanly(ship_file):
@@ -75,7 +75,8 @@ def test_wave_table_regular():
 
 def test_volume_vs_pressure_integration_barge_quartering(barge):
     """Seed Figs 5-6: box barge, quartering regular waves lambda = L, H = T/3, decay off:
-    roll and pitch amplitudes of the volume-based model within 5 % of pressure integration."""
+    heave, roll and pitch amplitudes of the volume-based model within 4 % of pressure integration
+    (the README's claim; measured heave +3.7 %, roll 0.0 %, pitch +3.7 %)."""
     ship, sec, st, co = barge
     m = trimesh.creation.box(extents=[100, 20, 12])
     m.apply_translation([0, 0, 6])
@@ -89,7 +90,7 @@ def test_volume_vs_pressure_integration_barge_quartering(barge):
     for name, i in [("heave", 0), ("roll", 1), ("pitch", 2)]:
         ref = 0.5 * np.ptp(s[last, i])
         ours = 0.5 * np.ptp(ds[name].values[last] if i == 0 else np.radians(ds[name].values[last]))
-        assert ours == pytest.approx(ref, rel=0.05), name
+        assert ours == pytest.approx(ref, rel=0.04), name
 
 
 def test_pressure_reference_hydrostatics(barge):
@@ -108,7 +109,7 @@ def test_pressure_reference_hydrostatics(barge):
 
 def test_dphi_dzdt_option_moves_toward_pressure_with_decay(barge):
     """The d2phi/dzdt term (off by default, seed eqs 9/11/12) brings heave and pitch from ~50 %
-    above pressure integration with the e^{kz} decay to within 6 % of it (barge, lambda = L,
+    above pressure integration with the e^{kz} decay to within 4 % of it (barge, lambda = L,
     H/lambda = 1/50, stern quartering); without it they match the decay-off integration instead."""
     ship, sec, st, co = barge
     h0, th0, _ = equilibrium(sec, float(st.volume), 0.0, float(st.kg))
@@ -131,5 +132,5 @@ def test_dphi_dzdt_option_moves_toward_pressure_with_decay(barge):
         sl = tt >= tt[-1] - 5 * Te
         out[dz] = np.array([first_harmonic(tt[sl], ds["heave"].values[sl], we)[0],
                             first_harmonic(tt[sl], np.radians(ds["pitch"].values[sl]), we)[0]])
-    assert out[True] == pytest.approx(ref, rel=0.06)
+    assert out[True] == pytest.approx(ref, rel=0.04)  # README: within 4 % (measured +3.7 %, +3.0 %)
     assert np.all(out[False] > 1.3 * ref)

@@ -1,0 +1,133 @@
+"""Validation rows of the 3-DOF time-domain model (stabflow.validation.dynamics)."""
+
+import numpy as np
+import pytest
+
+from stabflow.config import load_ship
+from stabflow.hull import build_hull
+from stabflow.statics import compute_statics
+from stabflow.validation import checks_dataset
+from stabflow.validation import dynamics as vd
+
+from ..conftest import SHIPS
+
+SMALL = "small waves vs linear frequency domain"
+PRESSURE_ROWS = (
+    [f"quartering waves lambda = L, H = T/3: {v} amplitude vs pressure integration" for v in vd.DOFS]
+    + [f"{SMALL} (pressure-integrated FK): {v}, largest over lambda/L = 1-3" for v in vd.DOFS]
+    + [f"d2phi/dzdt option, lambda = L, H/lambda = 1/50: {v} vs pressure integration with decay" for v in ("heave", "pitch")]
+)
+#: every row, in order, with its kind
+EXPECTED = (
+    [("roll decay: period vs damped natural period", "independent"),
+     ("roll decay: logarithmic decrement vs 2 pi zeta / sqrt(1 - zeta^2)", "independent")]
+    + [(f"calm-water rest: max |{v}| over 600 s", "consistency") for v in vd.DOFS]
+    + [(n, "independent") for n in PRESSURE_ROWS[:3]]
+    + [(f"{SMALL} (kernel FK): {v}, largest over lambda/L = 1-3", "consistency") for v in vd.DOFS]
+    + [(n, "consistency") for n in PRESSURE_ROWS[3:6]]
+    + [(n, "independent") for n in PRESSURE_ROWS[6:]]
+    + [("long head waves: heave / a vs long-wave limit", "consistency"),
+       ("long head waves: pitch / (k a) vs long-wave limit", "consistency"),
+       ("long head waves: roll / (k a)", "consistency")]
+)
+
+
+def inputs(name):
+    ship = load_ship(SHIPS / f"{name}.yaml")
+    hull = build_hull(ship)
+    return ship, hull, compute_statics(ship, hull)
+
+
+@pytest.fixture(scope="module")
+def barge_rows():
+    return {r.check: r for r in vd.dynamics_checks(*inputs("barge"))}
+
+
+@pytest.fixture(scope="module")
+def wigley():
+    return inputs("wigley")
+
+
+def test_barge_every_row_present_and_passes(barge_rows):
+    assert [(r.check, r.kind) for r in barge_rows.values()] == EXPECTED
+    for r in barge_rows.values():
+        assert r.status == "PASS", (r.check, r.value, r.criterion, r.reason)
+        assert r.reason == ""
+    # the measured numbers behind the tolerances (module docstring)
+    rows = barge_rows
+    assert abs(rows["roll decay: period vs damped natural period"].value) < 0.01
+    for v in vd.DOFS:
+        assert abs(rows[f"{SMALL} (kernel FK): {v}, largest over lambda/L = 1-3"].value) < 0.1
+    # the sections' planar waterline: about 1 / sinc(k_y B / 2) - 1 = +3.4 % in heave at lambda = L
+    heave = rows[f"{SMALL} (pressure-integrated FK): heave, largest over lambda/L = 1-3"]
+    assert 3.0 < heave.value < 4.0
+    assert "per lambda/L 1: +3.59 %" in heave.reference
+    dphi = rows[PRESSURE_ROWS[6]]
+    assert "without the option +51" in dphi.reference
+    ds = checks_dataset("barge", "dynamics", list(rows.values()))
+    assert (ds["status"].values == "PASS").all() and ds.sizes["check"] == len(EXPECTED)
+
+
+def test_wigley_skips_pressure_rows_with_reason(wigley):
+    rows = vd.dynamics_checks(*wigley)
+    assert [(r.check, r.kind) for r in rows] == EXPECTED
+    for r in rows:
+        if r.check in PRESSURE_ROWS:
+            assert r.status == "SKIPPED"
+            assert "'wigley'" in r.reason and "mesh" in r.reason
+        else:
+            assert r.status == "PASS", (r.check, r.value, r.reason)
+
+
+def test_pressure_mesh_applicability():
+    flare = load_ship(SHIPS / "dtmb5415_flare.yaml")
+    with pytest.raises(vd.NotApplicable, match="topside"):
+        vd.pressure_mesh(flare, reach=7.0)  # above the replaced topsides (z = 6.5 m)
+    v, f = vd.pressure_mesh(flare, reach=6.3)  # small waves stay below them
+    assert len(f) > 1000 and v.shape[1] == 3
+    with pytest.raises(vd.NotApplicable, match="triangles"):
+        vd.pressure_mesh(load_ship(SHIPS / "dtmb5415.yaml"), max_faces=100)
+
+
+def test_broken_coefficients_give_fail_rows_not_an_exception(monkeypatch, wigley):
+    def broken(*args, **kwargs):
+        raise RuntimeError("broken coefficients")
+
+    monkeypatch.setattr(vd, "coefficients", broken)
+    rows = vd.dynamics_checks(*wigley)
+    assert [(r.check, r.kind) for r in rows] == EXPECTED
+    for r in rows:
+        if r.check in PRESSURE_ROWS:  # does not apply, whatever else fails
+            assert r.status == "SKIPPED" and "mesh" in r.reason
+        else:
+            assert r.status == "FAIL"
+            assert r.reason == "RuntimeError: broken coefficients"
+
+
+def test_broken_simulation_on_barge_fails_rows_fast(monkeypatch):
+    def broken(*args, **kwargs):
+        raise FloatingPointError("diverged")
+
+    monkeypatch.setattr(vd, "simulate", broken)
+    rows = {r.check: r for r in vd.dynamics_checks(*inputs("barge"))}
+    assert list(rows) == [n for n, _ in EXPECTED]
+    depends = [n for n, _ in EXPECTED if not n.startswith("long head waves")]
+    for n in depends:
+        assert rows[n].status == "FAIL" and rows[n].reason == "FloatingPointError: diverged", n
+        assert np.isnan(rows[n].value)
+
+
+def test_nan_value_is_a_fail_row_with_reason(monkeypatch, wigley):
+    monkeypatch.setattr(vd, "first_harmonic", lambda t, x, w: (np.nan, 0.0))
+    rows = {r.check: r for r in vd.dynamics_checks(*wigley)}
+    r = rows[f"{SMALL} (kernel FK): roll, largest over lambda/L = 1-3"]
+    assert r.status == "FAIL" and "nan" in r.reason
+    assert rows["roll decay: period vs damped natural period"].status == "PASS"
+
+
+def test_peaks_of_a_damped_oscillation():
+    t = np.arange(0.0, 60.0, 0.05)
+    wd, s = 2 * np.pi / 7.0, 0.03
+    tp, xp = vd.peaks(t, np.exp(-s * t) * np.cos(wd * t))
+    assert np.diff(tp) == pytest.approx(7.0, rel=1e-4)
+    assert np.log(xp[:-1] / xp[1:]) == pytest.approx(s * 7.0, rel=1e-3)
