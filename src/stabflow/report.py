@@ -282,6 +282,11 @@ def step_summary(rows: list[dict]) -> str:
     return ", ".join(parts) or "no checks"
 
 
+def _unit(unit: str) -> str:
+    """' m' after a number, nothing for dimensionless values."""
+    return "" if unit in ("", "-", "1") else f" {unit}"
+
+
 def _cell(text: str) -> str:
     return str(text).replace("|", "/").replace("\n", " ")
 
@@ -318,8 +323,9 @@ def validation_page(results: Path, expected: dict) -> tuple[str, dict]:
         page += ["## Failing checks", "",
                  "These checks miss their reference; each is explained in the closing note of the session that "
                  "measured it and stays FAIL until the method is fixed.", ""]
-        page += [f"- **{t}**, {x['ship']}: {_cell(x['check'])} — measured {_fmt(x['value'])} {x['unit']}, criterion "
-                 f"{x['criterion']}{' — ' + _cell(x['reason']) if x['reason'] else ''}" for t, x in fails]
+        page += [f"- {x['ship']} ({t.lower()}): {_cell(x['check'])} — measured {_fmt(x['value'])}{_unit(x['unit'])}, "
+                 f"criterion {_cell(x['criterion'])}{_unit(x['unit'])}{' — ' + _cell(x['reason']) if x['reason'] else ''}"
+                 for t, x in fails]
         page.append("")
     for step, title, _ in STEPS:
         r = rows[step]
@@ -333,8 +339,8 @@ def validation_page(results: Path, expected: dict) -> tuple[str, dict]:
             res = {"PASS": "PASS", "FAIL": "**FAIL**", "SKIPPED": "SKIPPED"}[x["status"]]
             if x["reason"]:
                 res += f" ({_cell(x['reason'])})"
-            unit = "" if x["unit"] in ("", "-", "1") else f" {x['unit']}"
-            page.append(f"| {x['ship']} | {_cell(x['check'])} | {_fmt(x['value'])}{unit} | {x['criterion']}{unit} | "
+            unit = _unit(x["unit"])
+            page.append(f"| {x['ship']} | {_cell(x['check'])} | {_fmt(x['value'])}{unit} | {_cell(x['criterion'])}{unit} | "
                         f"{x['kind']} | {_cell(x['reference'])} | {res} |")
         page.append("")
     return "\n".join(page), counts

@@ -64,3 +64,23 @@ def test_trawler_open_deck_z_down():
     m = load_mesh(ROOT / "resources/hulls/trawler_25m.stl", flip_z=True)
     assert m.bounds[0, 2] == pytest.approx(-0.69, abs=0.01)
     assert m.bounds[1, 2] == pytest.approx(6.147, abs=0.01)
+
+
+def test_mesh_gz_reference_finds_its_own_equilibrium():
+    """The mesh reference solves its own free-trim equilibrium (bracketed height, then fsolve with
+    its convergence flag read): on a box mesh it equals the exact polygon-clipping GZ, and a volume
+    the hull cannot displace raises instead of returning a number."""
+    import numpy as np
+    import pytest
+    import trimesh
+
+    from stabflow.hull.meshprops import mesh_gz
+    from stabflow.validation.statics import exact_box_gz
+
+    m = trimesh.creation.box(extents=[100, 20, 12])
+    m.apply_translation([0, 0, 6])
+    heels = np.array([0.0, 20.0, 50.0, 90.0, 130.0, 180.0])
+    ref = exact_box_gz(100.0, 20.0, 12.0, 12000.0, 7.0, heels)
+    assert np.abs(mesh_gz(m, 12000.0, 0.0, 7.0, heels) - ref).max() < 1e-6
+    with pytest.raises(ValueError):
+        mesh_gz(m, 30000.0, 0.0, 7.0, [10.0])  # more than the hull's 24000 m3: no bracket

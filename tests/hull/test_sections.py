@@ -78,5 +78,5 @@ def test_wigley_sections_converge_to_analytic_volume():
     L, B, D, T = 100.0, 10.0, 10.0, 6.25
     # hull to the deck: underwater 4/9 LBT plus wall-sided part (D - T) * B * 2L/3
     ref = 4 / 9 * L * B * T + (D - T) * B * 2 * L / 3
-    assert float(ds.hull_volume) == pytest.approx(ref, rel=2e-3)
+    assert float(ds.hull_volume) == pytest.approx(ref, rel=5e-4)  # README: Wigley within 0.05 % (measured -0.011 %)
     assert ds["bonjean_area"].attrs["units"] == "m2"

@@ -86,14 +86,14 @@ class Check:
 
     @property
     def criterion(self) -> str:
-        """The acceptance band as text: '≤ 0.5', '≥ 0.9', 'in [0.7, 1.4]'."""
+        """The acceptance band as text: 'within ±0.5', '≥ 0.9', 'in [0.7, 1.4]' (no '|': it is a table cell)."""
         if self.lower is not None and self.upper is not None:
             return f"in [{self.lower:.4g}, {self.upper:.4g}]"
         if self.lower is not None:
             return f"≥ {self.lower:.4g}"
         if self.upper is not None:
             return f"≤ {self.upper:.4g}"
-        return f"|·| ≤ {self.tolerance:.4g}"
+        return f"within ±{self.tolerance:.4g}"
 
     @classmethod
     def failed(cls, check: str, reason: str, unit: str, reference: str, kind: str = "independent", **band) -> Check:
