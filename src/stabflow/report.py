@@ -333,15 +333,15 @@ def validation_page(results: Path, expected: dict) -> tuple[str, dict]:
         if not r:
             page += ["No ship or condition of this run has this step.", ""]
             continue
-        page += ["| ship / condition | check | measured | criterion | kind | reference | result |",
-                 "|---|---|---:|---|---|---|---|"]
+        page += ["| ship / condition | check — *kind*, reference | measured | criterion | result |",
+                 "|---|---|---:|---|---|"]
         for x in r:
             res = {"PASS": "PASS", "FAIL": "**FAIL**", "SKIPPED": "SKIPPED"}[x["status"]]
             if x["reason"]:
                 res += f" ({_cell(x['reason'])})"
             unit = _unit(x["unit"])
-            page.append(f"| {x['ship']} | {_cell(x['check'])} | {_fmt(x['value'])}{unit} | {_cell(x['criterion'])}{unit} | "
-                        f"{x['kind']} | {_cell(x['reference'])} | {res} |")
+            page.append(f"| {x['ship']} | {_cell(x['check'])} — *{x['kind']}*, {_cell(x['reference'])} | "
+                        f"{_fmt(x['value'])}{unit} | {_cell(x['criterion'])}{unit} | {res} |")
         page.append("")
     return "\n".join(page), counts
 
