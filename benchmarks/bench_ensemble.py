@@ -28,7 +28,7 @@ import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
 from stabflow.config import load_pipeline, load_ship  # noqa: E402
-from stabflow.ensemble import build_model, merge, quantile_from_histogram, run_shard  # noqa: E402
+from stabflow.statistics.ensemble import build_model, merge, quantile_from_histogram, run_shard  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 COND = dict(name="bench", ship="dtmb5415", sea=dict(spectrum="bretschneider", hs=11.5, tp=16.4), speed_kn=10.0,
@@ -84,7 +84,7 @@ def cpu_per_hour(dt: float, records: int = 64):
     ship = load_ship(ROOT / "config/ships/dtmb5415.yaml")
     m = build_model(ship, condition(dt=dt))
     run_shard(m, range(4), progress=False)  # JIT warm-up
-    from stabflow import ensemble as E
+    from stabflow.statistics import ensemble as E
 
     parts = {"wave": 0.0, "kernel": 0.0, "stats": 0.0}
     orig = (E.wave_table, E._simulate_batch, E.record_statistics)

@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 
 from stabflow.config import load_ship
-from stabflow.hull import Sections, build_hull
-from stabflow.statics import gz_curve, loading, particulars
+from stabflow.geometry import Sections, build_hull
+from stabflow.hydrostatics.statics import gz_curve, loading, particulars
 from stabflow.validation.statics import navaltoolbox_gz
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -14,9 +14,9 @@ import numpy as np
 from stabflow.config import Ship, load_ship
 from stabflow.dynamics import coefficients, simulate
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
-from stabflow.hull import Sections, build_hull
-from stabflow.hull.mesh import load_mesh
-from stabflow.statics import compute_statics, equilibrium
+from stabflow.geometry import Sections, build_hull
+from stabflow.geometry.mesh import load_mesh
+from stabflow.hydrostatics.statics import compute_statics, equilibrium
 from stabflow.waves.spectra import bretschneider
 
 ROOT = Path(__file__).resolve().parents[1]

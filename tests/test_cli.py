@@ -35,3 +35,31 @@ def test_gz_command_prints_table(capsys):
     assert main(["gz", str(SHIPS / "barge.yaml"), "--every", "30"]) == 0
     out = capsys.readouterr().out
     assert "gm" in out and "1.5556" in out
+
+
+def test_every_rule_has_a_cli_command():
+    """Every Snakemake rule (but `all`) runs from the CLI too: same name with '-' for '_'
+    (validate_statics is `stabflow validate`)."""
+    import re
+
+    from stabflow.cli import COMMANDS
+
+    from .conftest import ROOT
+
+    rules = set()
+    for f in (ROOT / "workflow" / "rules").glob("*.smk"):
+        rules |= set(re.findall(r"^rule (\w+):", f.read_text(), re.M))
+    assert len(rules) >= 14
+    names = {"validate" if r == "validate_statics" else r.replace("_", "-") for r in rules}
+    assert names <= set(COMMANDS), names - set(COMMANDS)
+
+
+def test_cli_help_lists_every_command(capsys):
+    import pytest
+
+    from stabflow.cli import COMMANDS
+
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    out = capsys.readouterr().out
+    assert all(name in out for name in COMMANDS)

@@ -100,7 +100,7 @@ def test_scientific_notation_in_pipeline_config(tmp_path):
 def test_hull_frame_checked_after_transform(ship_file, transform, what):
     """A mesh in millimetres, flipped, or shifted off the ship axes is rejected with one line naming
     hull.transform (or the loading it makes absurd) and what was found; nothing is computed."""
-    from stabflow.hull import build_hull
+    from stabflow.geometry import build_hull
 
     p = ship_file("dtmb5415", hull__transform=transform)
     with pytest.raises(StabflowError) as e:

@@ -16,7 +16,7 @@ from typing import Any
 import jsonschema
 import yaml
 
-from . import StabflowError
+from stabflow import StabflowError
 
 SCHEMA_DIR = Path(__file__).parent / "schemas"
 
@@ -137,6 +137,17 @@ class Ship:
     def rho(self) -> float:
         """Water density [kg/m^3]."""
         return float(self.data["water_density"])
+
+    def modified(self, stations: int | None = None, kg: float | None = None, dynamics: dict | None = None) -> "Ship":
+        """A copy cut at ``stations``, loaded to ``kg`` [m] and/or with ``dynamics`` entries
+        overridden (the ensemble conditions and the convergence checks use this)."""
+        data = copy.deepcopy(self.data)
+        if stations is not None:
+            data["hull"]["stations"] = int(stations)
+        if kg is not None:
+            data["loading"]["kg"] = float(kg)
+        data["dynamics"].update(dynamics or {})
+        return Ship(self.name, self.path, data)
 
     def hull_file(self) -> Path:
         """Absolute path of the hull file named in ``hull.file``."""

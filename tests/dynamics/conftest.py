@@ -2,8 +2,8 @@ import pytest
 
 from stabflow.config import load_ship
 from stabflow.dynamics import coefficients
-from stabflow.hull import Sections, build_hull
-from stabflow.statics import compute_statics
+from stabflow.geometry import Sections, build_hull
+from stabflow.hydrostatics.statics import compute_statics
 
 from ..conftest import SHIPS
 

@@ -6,7 +6,7 @@ import pytest
 from stabflow.dynamics import coefficients
 from stabflow.dynamics.hydro import bem_mesh, hydro_dataset
 from stabflow.dynamics.linear import stiffness_matrix
-from stabflow.statics import equilibrium
+from stabflow.hydrostatics.statics import equilibrium
 
 
 @pytest.fixture(scope="module")

@@ -8,8 +8,9 @@ from stabflow.dynamics import simulate
 from stabflow.dynamics.linear import fk_excitation, linear_response, stiffness_matrix
 from stabflow.dynamics.pressure import PressureModel
 from stabflow.dynamics.rao import first_harmonic, rao_sweep
-from stabflow.statics import equilibrium
-from stabflow.waves.synthesis import G, regular
+from stabflow.hydrostatics.statics import equilibrium
+from stabflow.constants import G
+from stabflow.waves.synthesis import regular
 
 
 def test_first_harmonic_exact():

@@ -7,8 +7,8 @@ import trimesh
 from stabflow.config import load_ship
 from stabflow.dynamics import coefficients, simulate
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
-from stabflow.hull import Sections, build_hull
-from stabflow.statics import compute_statics, equilibrium
+from stabflow.geometry import Sections, build_hull
+from stabflow.hydrostatics.statics import compute_statics, equilibrium
 from stabflow.waves.synthesis import regular, station_wave_table
 
 from ..conftest import SHIPS

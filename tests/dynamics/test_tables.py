@@ -5,13 +5,13 @@ import copy
 import numpy as np
 import pytest
 
-from stabflow._kernels import _section
+from stabflow.hydrostatics._kernels import _section
 from stabflow.config import Ship, load_ship
 from stabflow.dynamics import coefficients, simulate
 from stabflow.dynamics._kernels import _section_tab
 from stabflow.dynamics.tables import section_tables
-from stabflow.hull import Sections, build_hull
-from stabflow.statics import compute_statics
+from stabflow.geometry import Sections, build_hull
+from stabflow.hydrostatics.statics import compute_statics
 from stabflow.waves.seaway import Seaway
 
 from ..conftest import SHIPS

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from stabflow.config import load_ship
-from stabflow.hull import build_hull
-from stabflow.statics import compute_statics
+from stabflow.geometry import build_hull
+from stabflow.hydrostatics.statics import compute_statics
 from stabflow.validation import checks_dataset
 from stabflow.validation import dynamics as vd
 

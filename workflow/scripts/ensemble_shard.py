@@ -1,5 +1,5 @@
 """Snakemake script for the ensemble_shard rule (same as `stabflow ensemble-shard`)."""
-from stabflow.cli import run_ensemble_shard
+from stabflow.steps import run_ensemble_shard
 
 run_ensemble_shard(snakemake.input.ship, dict(snakemake.params.cond), int(snakemake.wildcards.shard),
                    snakemake.output.nc, threads=snakemake.threads,

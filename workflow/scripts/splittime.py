@@ -1,5 +1,5 @@
 """Snakemake script for the splittime rule (same as `stabflow splittime`)."""
-from stabflow.cli import run_splittime
+from stabflow.steps import run_splittime
 
 o = snakemake.output
 run_splittime(snakemake.input.ship, dict(snakemake.params.cond), snakemake.input.ensemble, dict(snakemake.params.cfg),

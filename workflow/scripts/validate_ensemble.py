@@ -1,5 +1,5 @@
 """Snakemake script for validate_ensemble (same as `stabflow validate-ensemble`)."""
-from stabflow.cli import run_validate_ensemble
+from stabflow.steps import run_validate_ensemble
 
 i = snakemake.input
 

@@ -19,7 +19,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .._kernels import _section
+from stabflow.geometry.frames import _rotate
+from stabflow.hydrostatics._kernels import _section
 
 
 @njit(cache=True)
@@ -97,14 +98,6 @@ def _section_tab(tab, lim, i, psi, d):
     a0, y0, z0 = _row(tab, lim, i, j, d, nu)
     a1, y1, z1 = _row(tab, lim, i, j + 1, d, nu)
     return a0 + w * (a1 - a0), sgn * (y0 + w * (y1 - y0)), z0 + w * (z1 - z0)
-
-
-@njit(cache=True, inline="always")
-def _rotate(bx, by, bz, cp, sp, ct, st):
-    """Body → earth axes, R = Ry(theta) Rx(phi)."""
-    y1 = cp * by - sp * bz
-    z1 = sp * by + cp * bz
-    return ct * bx + st * z1, y1, -st * bx + ct * z1
 
 
 @njit(cache=True)
@@ -186,17 +179,36 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
     return vol
 
 
+# positions in the parameter vector ``p`` of the RK4 kernels (built by
+# ``stabflow.dynamics.model.ModelParameters.vector``)
+P_RHO = 0
+P_G = 1
+P_XG = 2
+P_ZG = 3
+P_MASS = 4
+P_M33 = 5
+P_M44 = 6
+P_M55 = 7
+P_B33 = 8
+P_B44 = 9
+P_B44Q = 10
+P_B55 = 11
+P_COS_BETA = 12
+P_SIN_BETA = 13
+N_PARAMETERS = 14
+
+
 @njit(cache=True)
 def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f, work):
-    """State derivative. s = (h, phi, theta, hdot, phidot, thetadot); p = parameters:
-    (rho, g, xg, zg, mass, m33, i44, i55, b33, b44, b44q, b55, cos beta, sin beta)."""
-    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13], wave, f, work)
+    """State derivative. s = (h, phi, theta, hdot, phidot, thetadot); p = parameter vector (P_*)."""
+    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], s[0], s[1], s[2], p[P_COS_BETA],
+          p[P_SIN_BETA], wave, f, work)
     ds[0] = s[3]
     ds[1] = s[4]
     ds[2] = s[5]
-    ds[3] = (f[2] - p[4] * p[1] - p[8] * s[3]) / p[5]
-    ds[4] = (f[3] - p[9] * s[4] - p[10] * s[4] * abs(s[4])) / p[6]
-    ds[5] = (f[4] - p[11] * s[5]) / p[7]
+    ds[3] = (f[2] - p[P_MASS] * p[P_G] - p[P_B33] * s[3]) / p[P_M33]
+    ds[4] = (f[3] - p[P_B44] * s[4] - p[P_B44Q] * s[4] * abs(s[4])) / p[P_M44]
+    ds[5] = (f[4] - p[P_B55] * s[5]) / p[P_M55]
 
 
 @njit(cache=True, nogil=True)
@@ -222,7 +234,7 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
         s[q] = s0[q]
         out[n0, q] = s0[q]
     if keep:
-        _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13],
+        _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], s[0], s[1], s[2], p[P_COS_BETA], p[P_SIN_BETA],
               wtab[2 * n0], f, work)
         for q in range(6):
             forces[n0, q] = f[q]
@@ -242,7 +254,7 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
             s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
             out[n + 1, q] = s[q]
         if keep:
-            _fkhs(xs, dx, ys, zs, npts, tab, lim, p[0], p[1], p[2], p[3], s[0], s[1], s[2], p[12], p[13],
+            _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], s[0], s[1], s[2], p[P_COS_BETA], p[P_SIN_BETA],
                   wtab[j + 2], f, work)
             for q in range(6):
                 forces[n + 1, q] = f[q]

@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..hull.meshprops import earth_vertices
-from ..io import annotate
-from ..statics import G
+from stabflow.geometry.frames import earth_vertices
+from stabflow.io import annotate
+from stabflow.constants import G
 
 DOFS = ["Heave", "Roll", "Pitch"]
 
@@ -25,8 +25,8 @@ def bem_mesh(ship, max_faces: int = 20000):
     box panelled at 4 m. Raises StabflowError for hulls without a usable mesh."""
     import trimesh
 
-    from .. import StabflowError
-    from ..hull.mesh import load_mesh
+    from stabflow import StabflowError
+    from stabflow.geometry.mesh import load_mesh
 
     h = ship.hull
     if h["source"] == "box":

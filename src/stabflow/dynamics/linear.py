@@ -10,18 +10,20 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..statics import G
-from ._kernels import _fkhs
-from .tables import kernel_args
-from .rao import first_harmonic
+from stabflow.constants import G
+from stabflow.dynamics._kernels import _fkhs
+from stabflow.dynamics.tables import kernel_args
+from stabflow.dynamics.rao import first_harmonic
 
 
-def stiffness_matrix(sec, rho, xg, zg, h0, th0) -> np.ndarray:
-    """3x3 restoring matrix for (heave, roll, pitch) [N/m, N, N m / rad ...]."""
+def stiffness_matrix(sec, rho, xg, zg, h0, th0, step: float = 1e-5) -> np.ndarray:
+    """3x3 restoring matrix of (heave, roll, pitch) about the calm-water equilibrium (h0 [m], th0
+    [rad]) by central differences of the FK+HS kernel with ``step`` [m or rad]: rows (Fz, Mx, My),
+    columns (h, phi, theta); units N/m, N/rad, N m/m, N m/rad."""
     w = np.zeros((len(sec.x), 2))
     f = np.empty(6)
     C = np.empty((3, 3))
-    e = 1e-5
+    e = step
     base = np.array([h0, 0.0, th0])
     for j in range(3):
         loads = []

@@ -15,13 +15,14 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from ..config import Ship
-from ..hull import Sections
-from ..io import annotate
-from ..statics import G, equilibrium
-from ..waves.synthesis import station_wave_table
-from ._kernels import _fkhs, _simulate
-from .tables import SectionTables, kernel_args
+from stabflow.config import Ship
+from stabflow.geometry import Sections
+from stabflow.io import annotate
+from stabflow.constants import G
+from stabflow.hydrostatics.statics import equilibrium
+from stabflow.waves.synthesis import station_wave_table
+from stabflow.dynamics._kernels import _fkhs, _simulate
+from stabflow.dynamics.tables import SectionTables, kernel_args
 
 
 @dataclass(frozen=True)
@@ -51,20 +52,12 @@ class Coefficients:
 
 
 def stiffness(sec: Sections, rho, xg, zg, h0, th0) -> tuple[float, float, float]:
-    """C33 [N/m], C44 [N m/rad], C55 [N m/rad] by central differences of the FK+HS kernel in calm water."""
-    w = np.zeros((len(sec.x), 2))
-    f = np.empty(6)
-    args = kernel_args(sec)
+    """C33 [N/m], C44 [N m/rad], C55 [N m/rad]: the diagonal of the restoring matrix
+    (:func:`stabflow.dynamics.linear.stiffness_matrix`, central differences of step 1e-4)."""
+    from stabflow.dynamics.linear import stiffness_matrix
 
-    def load(dh=0.0, dphi=0.0, dth=0.0):
-        _fkhs(*args, rho, G, xg, zg, h0 + dh, dphi, th0 + dth, 1.0, 0.0, w, f, np.empty((len(sec.x), 5)))
-        return f.copy()
-
-    e = 1e-4
-    c33 = -(load(dh=e)[2] - load(dh=-e)[2]) / (2 * e)
-    c44 = -(load(dphi=e)[3] - load(dphi=-e)[3]) / (2 * e)
-    c55 = -(load(dth=e)[4] - load(dth=-e)[4]) / (2 * e)
-    return c33, c44, c55
+    C = stiffness_matrix(sec, rho, xg, zg, h0, th0, step=1e-4)
+    return float(C[0, 0]), float(C[1, 1]), float(C[2, 2])
 
 
 def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | None = None) -> Coefficients:
@@ -109,7 +102,7 @@ def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | 
 
 def section_depths(sec: Sections, h0: float, th0: float) -> np.ndarray:
     """Calm-water mean depth of each section (area / waterline breadth) [m], for the d2phi/dzdt term."""
-    from .._kernels import _section
+    from stabflow.hydrostatics._kernels import _section
 
     ct, st = np.cos(th0), np.sin(th0)
     out = np.zeros(len(sec.x))
@@ -121,11 +114,49 @@ def section_depths(sec: Sections, h0: float, th0: float) -> np.ndarray:
     return out
 
 
+@dataclass(frozen=True)
+class ModelParameters:
+    """What the RK4 kernels need besides the sections and the wave, by name.
+
+    Attributes: water density ``rho`` [kg/m^3], gravity ``g`` [m/s^2], centre of gravity ``xg``
+    (from midships, + forward) and ``zg`` (above the baseline) [m], ``mass`` [kg], the total
+    inertias ``m33`` [kg], ``m44``, ``m55`` [kg m^2] (rigid body + added), damping ``b33``
+    [N s/m], ``b44`` [N m s/rad], ``b44q`` [N m s^2/rad^2], ``b55`` [N m s/rad], and the wave
+    heading as ``cos_beta``, ``sin_beta``.
+    """
+
+    rho: float
+    g: float
+    xg: float
+    zg: float
+    mass: float
+    m33: float
+    m44: float
+    m55: float
+    b33: float
+    b44: float
+    b44q: float
+    b55: float
+    cos_beta: float
+    sin_beta: float
+
+    def vector(self) -> np.ndarray:
+        """The kernels' parameter vector, in the order of the ``P_*`` positions of ``_kernels``."""
+        from stabflow.dynamics import _kernels as K
+
+        v = np.empty(K.N_PARAMETERS)
+        for name in self.__dataclass_fields__:
+            v[getattr(K, f"P_{name.upper()}")] = getattr(self, name)
+        return v
+
+
 def parameters(co: Coefficients, rho: float, lcg: float, kg: float, heading_deg: float) -> np.ndarray:
-    """Parameter vector of the RK4 kernels (``_rhs``)."""
+    """Parameter vector of the RK4 kernels (``_rhs``) for coefficients ``co``, loading (LCG, KG [m])
+    and wave heading [degree]."""
     b = np.radians(heading_deg)
-    return np.array([rho, G, lcg, kg, co.mass, co.mass + co.a33, co.i44 + co.a44, co.i55 + co.a55,
-                     co.b33, co.b44, co.b44q, co.b55, np.cos(b), np.sin(b)])
+    return ModelParameters(rho=rho, g=G, xg=lcg, zg=kg, mass=co.mass, m33=co.mass + co.a33, m44=co.i44 + co.a44,
+                           m55=co.i55 + co.a55, b33=co.b33, b44=co.b44, b44q=co.b44q, b55=co.b55, cos_beta=np.cos(b),
+                           sin_beta=np.sin(b)).vector()
 
 
 def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves, heading_deg: float,

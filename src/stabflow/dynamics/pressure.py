@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..hull.meshprops import earth_vertices
-from ..waves.synthesis import G
+from stabflow.geometry.frames import earth_vertices
+from stabflow.constants import G
 
 
 class PressureModel:

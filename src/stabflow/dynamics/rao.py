@@ -11,9 +11,10 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..io import annotate
-from ..waves.synthesis import G, regular
-from .model import simulate
+from stabflow.io import annotate
+from stabflow.constants import G
+from stabflow.waves.synthesis import regular
+from stabflow.dynamics.model import simulate
 
 
 def first_harmonic(t: np.ndarray, x: np.ndarray, omega: float) -> tuple[float, float]:

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..hull import Sections
-from ._kernels import _build_tables
+from stabflow.geometry import Sections
+from stabflow.dynamics._kernels import _build_tables
 
 
 @dataclass(frozen=True)

@@ -84,17 +84,18 @@ from collections.abc import Callable
 import numpy as np
 import xarray as xr
 
-from ..config import Ship
-from ..dynamics import Coefficients, coefficients, simulate
-from ..dynamics._kernels import _fkhs
-from ..dynamics.linear import fk_excitation, linear_response, stiffness_matrix
-from ..dynamics.pressure import PressureModel, simulate_pressure
-from ..dynamics.rao import first_harmonic, rao_sweep
-from ..dynamics.tables import kernel_args
-from ..hull import Sections
-from ..statics import G, equilibrium
-from ..waves.synthesis import regular, station_wave_table
-from . import Check, run_check
+from stabflow.config import Ship
+from stabflow.dynamics import Coefficients, coefficients, simulate
+from stabflow.dynamics._kernels import _fkhs
+from stabflow.dynamics.linear import fk_excitation, linear_response, stiffness_matrix
+from stabflow.dynamics.pressure import PressureModel, simulate_pressure
+from stabflow.dynamics.rao import first_harmonic, rao_sweep
+from stabflow.dynamics.tables import kernel_args
+from stabflow.geometry import Sections
+from stabflow.constants import G
+from stabflow.hydrostatics.statics import equilibrium
+from stabflow.waves.synthesis import regular, station_wave_table
+from stabflow.validation import Check, run_check
 
 CALM = (np.array([]), np.array([]), np.array([]))
 DOFS = ("heave", "roll", "pitch")
@@ -241,7 +242,7 @@ def pressure_mesh(ship: Ship, max_faces: int | None = None, reach: float | None 
     """
     import trimesh
 
-    from ..hull.mesh import load_mesh
+    from stabflow.geometry.mesh import load_mesh
 
     h = ship.hull
     if h["source"] == "box":
@@ -534,9 +535,9 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
     ship : Ship
         The ship (:func:`stabflow.config.load_ship`).
     hull : xarray.Dataset
-        Its sections (:func:`stabflow.hull.build_hull`).
+        Its sections (:func:`stabflow.geometry.build_hull`).
     st : xarray.Dataset
-        Its statics (:func:`stabflow.statics.compute_statics`).
+        Its statics (:func:`stabflow.hydrostatics.statics.compute_statics`).
 
     Returns
     -------

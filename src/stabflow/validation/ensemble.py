@@ -55,9 +55,9 @@ import numpy as np
 import xarray as xr
 from scipy import signal, stats
 
-from ..ensemble import merge, quantile_from_histogram, run_shard
-from ..waves.synthesis import station_wave_table
-from . import Check, run_check
+from stabflow.statistics.ensemble import merge, quantile_from_histogram, run_shard
+from stabflow.waves.synthesis import station_wave_table
+from stabflow.validation import Check, run_check
 
 #: seaway: records and hours of elevation at least (tests/waves/test_seaway.py: 40 x 30 min)
 SEAWAY_RECORDS = 40
@@ -100,7 +100,7 @@ def seaway_elevation(model, records: int | None = None, dt: float | None = None)
 
     Parameters
     ----------
-    model : stabflow.ensemble.Model
+    model : stabflow.statistics.ensemble.Model
         The condition (``model.sea``, ``model.cond['seed']``, ``model.cond['duration']``).
     records : int, optional
         Number of records; default: at least ``SEAWAY_RECORDS`` and ``SEAWAY_HOURS`` hours.
@@ -136,7 +136,7 @@ def seaway_checks(model) -> list[Check]:
 
     Parameters
     ----------
-    model : stabflow.ensemble.Model
+    model : stabflow.statistics.ensemble.Model
         The condition.
 
     Returns
@@ -226,7 +226,7 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS) -> l
 
     Parameters
     ----------
-    model : stabflow.ensemble.Model
+    model : stabflow.statistics.ensemble.Model
         The condition's model.
     ens : xarray.Dataset
         The condition's merged ensemble.
@@ -316,7 +316,7 @@ def extremes_checks(extremes: xr.Dataset | None) -> list[Check]:
     Parameters
     ----------
     extremes : xarray.Dataset or None
-        Dataset of ``stabflow.extremes.analyse``; ``None`` when the step does not run.
+        Dataset of ``stabflow.statistics.extremes.analyse``; ``None`` when the step does not run.
 
     Returns
     -------
@@ -390,7 +390,7 @@ def splittime_checks(splittime: xr.Dataset | None) -> list[Check]:
     Parameters
     ----------
     splittime : xarray.Dataset or None
-        Dataset of ``stabflow.splittime.analyse``; ``None`` when the step does not run.
+        Dataset of ``stabflow.statistics.splittime.analyse``; ``None`` when the step does not run.
 
     Returns
     -------
@@ -460,15 +460,15 @@ def ensemble_checks(model, ens: xr.Dataset, extremes: xr.Dataset | None = None,
 
     Parameters
     ----------
-    model : stabflow.ensemble.Model
+    model : stabflow.statistics.ensemble.Model
         ``build_model(ship, cond)`` of the condition.
     ens : xarray.Dataset
         The condition's merged ensemble (``results/ensemble/<ship>_<cond>/ensemble.nc``).
     extremes : xarray.Dataset, optional
-        The extremes step's dataset (``stabflow.extremes.analyse``); ``None`` when that step does
+        The extremes step's dataset (``stabflow.statistics.extremes.analyse``); ``None`` when that step does
         not run for the condition (its rows are SKIPPED with that reason).
     splittime : xarray.Dataset, optional
-        The split-time step's dataset (``stabflow.splittime.analyse``); ``None`` likewise.
+        The split-time step's dataset (``stabflow.statistics.splittime.analyse``); ``None`` likewise.
 
     Returns
     -------

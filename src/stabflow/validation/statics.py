@@ -14,15 +14,15 @@
 
 from __future__ import annotations
 
-import copy
 import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from ..config import Ship
-from . import Check, run_check
+from stabflow.config import Ship
+from stabflow.validation import Check, run_check
+from stabflow.validation.references import exact_box_gz, mesh_gz
 
 #: published particulars used as references, with their source
 PUBLISHED = {
@@ -41,44 +41,9 @@ TOL_NAVALTOOLBOX = 1.0  # % GZmax (measured: DTMB 0.26 %, DTC 0.65 %)
 TOL_STATIONS = 0.5  # % GZmax
 
 
-def exact_box_gz(length, breadth, depth, volume, kg, heel_deg) -> np.ndarray:
-    """Exact GZ of a rectangular barge by polygon clipping (shapely), independent of stabflow.
-
-    A prismatic box floats at zero trim, so the 2-D section problem is exact: find the inclined
-    waterline that cuts the area volume/length (brentq), then GZ = y_G - y_B in earth axes.
-    """
-    from scipy.optimize import brentq
-    from shapely.affinity import rotate
-    from shapely.geometry import Polygon, box
-
-    sec = Polygon([(-breadth / 2, 0), (breadth / 2, 0), (breadth / 2, depth), (-breadth / 2, depth)])
-    area = volume / length
-    out = []
-    for hd in np.atleast_1d(heel_deg):
-        # rotate the section about the origin (port up for positive heel), G moves with it
-        r = rotate(sec, hd, origin=(0, 0))
-        g = rotate(Polygon([(0, kg), (1e-9, kg), (0, kg + 1e-9)]), hd, origin=(0, 0)).exterior.coords[0]
-        lo, hi = r.bounds[1], r.bounds[3]
-
-        def f(zw):
-            return r.intersection(box(-1e3, -1e3, 1e3, zw)).area - area
-
-        zw = brentq(f, lo, hi, xtol=1e-13)
-        wet = r.intersection(box(-1e3, -1e3, 1e3, zw))
-        out.append(g[0] - wet.centroid.x)
-    return np.array(out)
-
-
-def with_stations(ship: Ship, n: int) -> Ship:
-    """A copy of ``ship`` cut at ``n`` stations."""
-    d = copy.deepcopy(ship.data)
-    d["hull"]["stations"] = n
-    return Ship(ship.name, ship.path, d)
-
-
 def ship_mesh(ship: Ship):
     """The ship's hull mesh in ship axes (after the config's transform)."""
-    from ..hull.mesh import load_mesh
+    from stabflow.geometry.mesh import load_mesh
 
     tr = ship.hull.get("transform", {})
     return load_mesh(ship.hull_file(), tr.get("scale", 1.0), tr.get("flip_z", False), tr.get("translate", [0, 0, 0]))
@@ -104,8 +69,8 @@ def navaltoolbox_gz(ship: Ship, volume, lcg, kg, heel_deg) -> np.ndarray:
 def statics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]:
     """All statics checks that apply to ``ship`` (see the module table). A check that cannot run is
     a FAIL row with the reason; a check that does not apply to this hull source is SKIPPED."""
-    from ..hull import build_hull
-    from ..statics import compute_statics
+    from stabflow.geometry import build_hull
+    from stabflow.hydrostatics.statics import compute_statics
 
     checks: list[Check] = []
     gz = st["gz"]
@@ -130,8 +95,6 @@ def statics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]:
     mesh_name = "GZ 0-180 deg vs exact mesh integration (free trim), max abs. error / GZmax"
     nt_name = f"GZ 0-{NAVALTOOLBOX_MAX_HEEL:.0f} deg vs navaltoolbox, max abs. error / GZmax"
     if h["source"] == "mesh" and "topside" not in h:  # references are of the untransformed mesh
-        from ..hull.meshprops import mesh_gz
-
         heels = np.arange(0.0, float(gz["heel"].max()) + 1e-9, 10.0)
         checks.append(run_check(
             lambda: 100 * np.abs(gz.sel(heel=heels).values - mesh_gz(ship_mesh(ship), vol, lcg, kg, heels)).max() / gzmax,
@@ -152,7 +115,7 @@ def statics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]:
         g, src = pub["gm"]
         checks.append(Check("GMt vs published", float(st["gm"]) - g, 0.05, "m", src))
     # station convergence: doubling the stations changes GZ by less than 0.5 % of GZmax
-    ship2 = with_stations(ship, 2 * int(h["stations"]))
+    ship2 = ship.modified(stations=2 * int(h["stations"]))
     st2 = compute_statics(ship2, build_hull(ship2))
     err = np.abs(st2["gz"].values - gz.values).max() / gzmax
     checks.append(Check(f"GZ change with stations doubled ({h['stations']} to {2 * h['stations']}), / GZmax", 100 * err,

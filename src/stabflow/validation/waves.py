@@ -18,9 +18,8 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..config import Ship
-from . import Check
-from .statics import with_stations
+from stabflow.config import Ship
+from stabflow.validation import Check
 
 
 def _gz_check(name: str, diff, gzmax: float, tol: float, reference: str, kind: str = "consistency") -> Check:
@@ -35,11 +34,11 @@ def _gz_check(name: str, diff, gzmax: float, tol: float, reference: str, kind: s
 
 def waves_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset, waves: xr.Dataset, metric: xr.Dataset, es_cfg: dict) -> list[Check]:
     """Wave-pass and early-stage checks: H → 0 limit, two GM routes, station convergence, weights."""
-    from ..early_stage import heel_of_gz_max, joint_pdf, wave_statistics, weights
-    from ..hull import Sections, build_hull
-    from ..statics import gz_curve
-    from ..waves.spectra import spectrum
-    from ..wavepass import wave_gm, wave_gz
+    from stabflow.stability_in_waves.early_stage import heel_of_gz_max, joint_pdf, wave_statistics, weights
+    from stabflow.geometry import Sections, build_hull
+    from stabflow.hydrostatics.statics import gz_curve
+    from stabflow.waves.spectra import spectrum
+    from stabflow.stability_in_waves.wave_pass import wave_gm, wave_gz
 
     sec = Sections(hull)
     V, lcg, kg, L = (float(st[k]) for k in ("volume", "lcg", "kg", "lwl"))
@@ -63,7 +62,7 @@ def waves_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset, waves: xr.Dataset
     checks.append(Check(f"GM(x_c=0) eq. A24 vs GZ slope on the wave (lambda = L, H/lambda = {s:g})", gm_c - slope, 0.01, "m",
                         "second route: slope of GZ(phi; x_c)", kind="consistency"))
     # station convergence of GM(x_c), lambda = L at the steepest wave
-    ship2 = with_stations(ship, 2 * int(ship.hull["stations"]))
+    ship2 = ship.modified(stations=2 * int(ship.hull["stations"]))
     sec2 = Sections(build_hull(ship2))
     xs = waves["crest_position"].values[:: max(1, len(waves["crest_position"]) // 5)]
     a = np.array([wave_gm(sec, V, lcg, kg, amp, k, x)[0] for x in xs])

@@ -27,7 +27,7 @@ from functools import cached_property
 import numpy as np
 from scipy.optimize import brentq
 
-from .spectra import cutoff_frequencies, pierson_moskowitz_modal_frequency, spectrum
+from stabflow.waves.spectra import cutoff_frequencies, pierson_moskowitz_modal_frequency, spectrum
 
 METHODS = ("geometric", "equal_energy", "uniform")
 

@@ -10,7 +10,7 @@ import numpy as np
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-G = 9.80665  # [m/s^2]
+from stabflow.constants import G
 
 
 def bretschneider(omega, hs: float, tm: float):

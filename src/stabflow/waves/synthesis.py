@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._kernels import _trig_table
+from stabflow.waves._kernels import _trig_table
 
-G = 9.80665  # [m/s^2]
+from stabflow.constants import G
 
 
 def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None,

@@ -1,0 +1,368 @@
+"""Irregular-sea ensembles: many independent records, statistics streamed record by record.
+
+A *condition* is a ship (with an optional KG override), a seaway (``waves.seaway.Seaway``), speed,
+heading, record length, RK4 step, the number of records and the master seed. Record ``r`` is fully
+defined by (master seed, r): its wave components come from ``Seaway.components(seed, r)``, every
+record starts from the calm-water equilibrium at rest, so any record can be regenerated alone
+(``simulate_record``) — the split-time step restarts from states inside records this way.
+
+Records are simulated in batches, in parallel over records (numba ``prange`` in
+``_simulate_batch``); each record is the same computation whatever the number of threads, so the
+files are bit-identical for any thread count and any sharding. Only statistics are kept
+(``record_statistics``): moments, fixed-bin histograms, threshold crossings with the roll rate,
+roll peaks and Hilbert-envelope peaks, capsize flag and time, roll autocovariance and response
+spectra; full time histories only for the first ``samples`` records.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+from scipy.signal import hilbert
+
+from stabflow.config import Ship
+from stabflow.dynamics import coefficients
+from stabflow.dynamics._kernels import _simulate, _simulate_batch
+from stabflow.dynamics.model import parameters, section_depths
+from stabflow.dynamics.tables import SectionTables, kernel_args, section_tables
+from stabflow.constants import KNOT
+from stabflow.geometry import Sections, build_hull
+from stabflow.io import annotate
+from stabflow.hydrostatics.statics import compute_statics, equilibrium
+from stabflow.waves.seaway import Seaway
+from stabflow.waves.synthesis import station_wave_table
+
+DOFS = ("heave", "roll", "pitch")
+SERIES = ("wave",) + DOFS  # spectra: wave elevation at midships and the three motions
+BATCH = 16  # records per parallel batch
+SPECTRUM_SEGMENT = 512  # Welch segment length [samples]
+
+
+@dataclass
+class Model:
+    """Everything needed to simulate records of one condition."""
+
+    ship: Ship
+    cond: dict
+    sea: Seaway
+    sec: Sections
+    st: xr.Dataset
+    tables: SectionTables
+    p: np.ndarray
+    s0: np.ndarray
+    depth: np.ndarray | None
+    roll_period: float
+
+    @property
+    def dt(self) -> float:
+        return float(self.cond["dt"])
+
+    @property
+    def nsteps(self) -> int:
+        return int(round(self.cond["duration"] / self.dt))
+
+    @property
+    def speed(self) -> float:
+        return float(self.cond["speed_kn"]) * KNOT
+
+    @property
+    def mid_station(self) -> int:
+        return int(np.argmin(np.abs(self.sec.x)))
+
+
+def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Model:
+    """Cut the hull at ``cond['stations']``, apply the condition's KG, find the equilibrium,
+    coefficients (Capytaine ``hydro`` if the ship uses it) and the sectional tables."""
+    s = ship.modified(stations=cond["stations"], kg=cond.get("kg"), dynamics=cond.get("dynamics", {}))
+    hull = build_hull(s)
+    st = compute_statics(s, hull)
+    sec = Sections(hull)
+    use_hydro = hydro if s.data["dynamics"].get("hydro") == "capytaine" else None
+    co = coefficients(s, sec, st, use_hydro)
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    depth = section_depths(sec, h0, th0) if cond.get("dphi_dzdt", False) else None
+    tables = section_tables(sec, int(cond.get("table_angles", 181)), int(cond.get("table_levels", 101)))
+    p = parameters(co, s.rho, float(st["lcg"]), float(st["kg"]), float(cond["heading_deg"]))
+    return Model(s, cond, Seaway.from_config(cond["sea"]), sec, st, tables, p,
+                 np.array([h0, 0.0, th0, 0.0, 0.0, 0.0]), depth, co.natural_period("roll"))
+
+
+def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
+    """Wave table (2 nsteps + 1, nst, nq) of record ``record`` on the half-step grid."""
+    amp, w, ph = model.sea.components(model.cond["seed"], record)
+    t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
+    return station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, t_half,
+                              model.depth, dtype=dtype)
+
+
+def simulate_record(model: Model, record: int, s_start=None, n_start: int = 0, n_end: int | None = None,
+                    phi_cap_deg: float = 90.0, wtab=None):
+    """Regenerate record ``record`` (optionally from state ``s_start`` at step ``n_start`` up to step
+    ``n_end``). Returns (states (nsteps + 1, 6) — rows before ``n_start`` unset — and the last step
+    done). Bit-identical to the same steps of the ensemble run."""
+    wtab = wave_table(model, record) if wtab is None else wtab
+    n_end = model.nsteps if n_end is None else n_end
+    out = np.empty((model.nsteps + 1, 6))
+    s0 = model.s0 if s_start is None else np.asarray(s_start, float)
+    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, n_start, n_end, s0,
+                     np.radians(phi_cap_deg), out, np.empty((0, 6)))
+    return out, last
+
+
+def crossings(t, x, xdot, level: float, up: bool = True):
+    """Times, rates and step indices where ``x`` crosses ``level`` upwards (or downwards), with
+    linear interpolation of time and rate between the samples either side."""
+    a, b = x[:-1], x[1:]
+    n = np.nonzero((a < level) & (b >= level))[0] if up else np.nonzero((a > level) & (b <= level))[0]
+    f = (level - a[n]) / (b[n] - a[n])
+    return t[n] + f * (t[n + 1] - t[n]), xdot[n] + f * (xdot[n + 1] - xdot[n]), n
+
+
+def local_peaks(t, x, floor: float):
+    """Local maxima of ``x`` above ``floor``, refined by the parabola through the three samples."""
+    m = np.nonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:]) & (x[1:-1] > floor))[0] + 1
+    y0, y1, y2 = x[m - 1], x[m], x[m + 1]
+    den = y0 - 2 * y1 + y2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        d = np.where(den != 0, 0.5 * (y0 - y2) / den, 0.0)
+    dt = t[1] - t[0] if len(t) > 1 else 0.0
+    return t[m] + d * dt, y1 - 0.25 * (y0 - y2) * d
+
+
+def envelope(x):
+    """Amplitude envelope |x + i H[x]| (Hilbert transform, scipy.signal.hilbert) of a zero-mean record."""
+    return np.abs(hilbert(x - x.mean())) if len(x) > 1 else np.abs(x)
+
+
+def bins(cond: dict) -> dict[str, np.ndarray]:
+    """Fixed histogram bin edges: roll [degree], heave [m], pitch [degree]."""
+    h = cond["histogram"]
+    return {"roll": np.arange(-90.0, 90.0 + 1e-9, h["roll_bin_deg"]),
+            "heave": np.arange(-h["heave_range"], h["heave_range"] + 1e-9, h["heave_bin"]),
+            "pitch": np.arange(-h["pitch_range_deg"], h["pitch_range_deg"] + 1e-9, h["pitch_bin_deg"])}
+
+
+def record_statistics(model: Model, record: int, states: np.ndarray, last: int, wave_mid: np.ndarray) -> dict:
+    """Everything kept from one record (``states`` (nsteps + 1, 6), valid up to ``last``)."""
+    cond = model.cond
+    n = last + 1
+    t = np.arange(n) * model.dt
+    h = states[:n, 0] - model.s0[0]
+    roll = np.degrees(states[:n, 1])
+    pitch = np.degrees(states[:n, 2] - model.s0[2])
+    rate = np.degrees(states[:n, 4])
+    series = {"heave": h, "roll": roll, "pitch": pitch}
+    out = {"steps": last, "capsized": int(last < model.nsteps),
+           "capsize_time": float(t[-1]) if last < model.nsteps else np.nan,
+           "roll_max": float(np.abs(roll).max()),
+           "moments": np.array([[np.sum(s**k) for k in range(1, 5)] for s in series.values()])}
+    edges = bins(cond)
+    out["hist"] = {k: np.histogram(v, edges[k])[0] for k, v in series.items()}
+    ev = []
+    for j, thr in enumerate(cond["thresholds_deg"]):
+        for side in (1, -1):
+            tc, rc, nc = crossings(t, roll, rate, side * thr, up=side > 0)
+            ev.append(np.column_stack([np.full(len(tc), j), np.full(len(tc), side), tc, rc, nc]))
+    out["crossings"] = np.concatenate(ev) if ev else np.zeros((0, 5))
+    floor = cond["peak_floor_deg"]
+    tp, vp = local_peaks(t, roll, floor)
+    tm, vm = local_peaks(t, -roll, floor)
+    order = np.argsort(np.concatenate([tp, tm]), kind="stable")
+    out["peaks"] = np.column_stack([np.concatenate([tp, tm]), np.concatenate([vp, -vm])])[order]
+    env = envelope(roll)
+    te, ve = local_peaks(t, env, floor)
+    out["envelope_peaks"] = np.column_stack([te, ve])
+    # autocovariance sums (zero-padded FFT) and Welch spectra, for records long enough
+    maxlag = int(round(cond["max_lag"] / model.dt))
+    x = roll - roll.mean()
+    nfft = 1 << int(np.ceil(np.log2(2 * max(len(x), maxlag + 1))))
+    fx = np.fft.rfft(x, nfft)
+    acov = np.fft.irfft(fx * np.conj(fx), nfft)[: maxlag + 1]
+    cnt = np.maximum(len(x) - np.arange(maxlag + 1), 0)
+    out["acov"] = np.where(cnt > 0, acov, 0.0)
+    out["acov_n"] = cnt
+    out["psd"] = welch_psd(np.array([wave_mid[:n], h, roll, pitch]), model.dt) if n >= SPECTRUM_SEGMENT else None
+    return out
+
+
+def welch_psd(x: np.ndarray, dt: float, nseg: int = SPECTRUM_SEGMENT) -> np.ndarray:
+    """One-sided Welch spectra per rad/s of the rows of ``x`` (Hann window, 50 % overlap, mean
+    removed per segment): the same estimate as scipy.signal.welch, vectorised over rows."""
+    step = nseg // 2
+    starts = np.arange(0, x.shape[1] - nseg + 1, step)
+    win = np.hanning(nseg + 1)[:-1]  # periodic Hann, as scipy's default
+    seg = np.stack([x[:, s: s + nseg] for s in starts], axis=1)
+    seg = (seg - seg.mean(axis=-1, keepdims=True)) * win
+    p = np.abs(np.fft.rfft(seg, axis=-1)) ** 2 / (np.sum(win**2) / dt)
+    p[..., 1:-1] *= 2.0
+    return p.mean(axis=1) / (2 * np.pi)
+
+
+def _events(rows, rec, width):
+    return np.concatenate([np.column_stack([np.full(len(r), k), r]) for k, r in zip(rec, rows)]) if rows else np.zeros((0, width + 1))
+
+
+def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset:
+    """Simulate ``records`` in parallel batches and return the shard's statistics dataset."""
+    from tqdm import tqdm
+
+    cond = model.cond
+    edges = bins(cond)
+    per = []
+    samples = {}
+    args = kernel_args(model.sec, model.tables)
+    recs = list(records)
+    bar = tqdm(total=len(recs), desc=f"{model.ship.name} records {recs[0] if recs else 0}-", disable=not progress, mininterval=10,
+               unit="rec")
+    for b0 in range(0, len(recs), BATCH):
+        batch = recs[b0: b0 + BATCH]
+        tabs = np.stack([wave_table(model, r) for r in batch])
+        out = np.empty((len(batch), model.nsteps + 1, 6))
+        last = np.empty(len(batch), np.int64)
+        _simulate_batch(*args, model.p, tabs, model.dt, model.nsteps, model.s0, np.radians(90.0), out, last)
+        for q, r in enumerate(batch):
+            wave_mid = tabs[q, ::2, model.mid_station, 0].astype(float)
+            per.append(record_statistics(model, r, out[q], int(last[q]), wave_mid))
+            if r < cond["samples"]:
+                samples[r] = (out[q], int(last[q]), wave_mid)
+        bar.update(len(batch))
+    bar.close()
+    return shard_dataset(model, recs, per, samples, edges)
+
+
+def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
+    cond = model.cond
+    nrec = len(recs)
+    cr = _events([p["crossings"] for p in per], recs, 5)
+    pk = _events([p["peaks"] for p in per], recs, 2)
+    ep = _events([p["envelope_peaks"] for p in per], recs, 2)
+    maxlag = int(round(cond["max_lag"] / model.dt))
+    psds = [p["psd"] for p in per if p["psd"] is not None]
+    nfreq = SPECTRUM_SEGMENT // 2 + 1
+    freq = np.fft.rfftfreq(SPECTRUM_SEGMENT, model.dt) * 2 * np.pi
+    ds = xr.Dataset(
+        {
+            "steps": ("record", np.array([p["steps"] for p in per], np.int64)),
+            "capsized": ("record", np.array([p["capsized"] for p in per], np.int8)),
+            "capsize_time": ("record", np.array([p["capsize_time"] for p in per])),
+            "roll_max": ("record", np.array([p["roll_max"] for p in per])),
+            "moment_sums": (("record", "dof", "order"), np.array([p["moments"] for p in per]).reshape(nrec, 3, 4)),
+            "crossing_record": ("crossing", cr[:, 0].astype(np.int64)),
+            "crossing_threshold": ("crossing", cr[:, 1].astype(np.int64)),
+            "crossing_side": ("crossing", cr[:, 2].astype(np.int8)),
+            "crossing_time": ("crossing", cr[:, 3]),
+            "crossing_roll_rate": ("crossing", cr[:, 4]),
+            "crossing_step": ("crossing", cr[:, 5].astype(np.int64)),
+            "peak_record": ("peak", pk[:, 0].astype(np.int64)),
+            "peak_time": ("peak", pk[:, 1].astype(np.float32)),
+            "peak_value": ("peak", pk[:, 2].astype(np.float32)),
+            "envelope_peak_record": ("envelope_peak", ep[:, 0].astype(np.int64)),
+            "envelope_peak_time": ("envelope_peak", ep[:, 1]),
+            "envelope_peak_value": ("envelope_peak", ep[:, 2]),
+            "acov_sum": ("lag", np.sum([p["acov"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
+            "acov_count": ("lag", np.sum([p["acov_n"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
+            "psd_count": ((), len(psds)),
+        },
+        coords={"record": np.array(recs, np.int64), "dof": list(DOFS), "order": [1, 2, 3, 4],
+                "threshold": np.array(cond["thresholds_deg"], float), "lag": np.arange(maxlag + 1) * model.dt,
+                "frequency": freq},
+    )
+    psd_sum = np.sum(psds, axis=0) if psds else np.zeros((len(SERIES), nfreq))
+    for j, s in enumerate(SERIES):  # one variable per series: each carries its own units
+        ds[f"{s}_psd_sum"] = ("frequency", psd_sum[j])
+    for k in DOFS:
+        ds[f"hist_{k}"] = (f"{k}_bin", np.sum([p["hist"][k] for p in per], axis=0).astype(np.int64)
+                           if per else np.zeros(len(edges[k]) - 1, np.int64))
+        ds = ds.assign_coords({f"{k}_bin": 0.5 * (edges[k][1:] + edges[k][:-1])})
+    if samples:
+        keys = sorted(samples)
+        n = model.nsteps + 1
+        arr = np.full((len(keys), 5, n), np.nan)
+        for q, r in enumerate(keys):
+            st, last, wm = samples[r]
+            m = last + 1
+            arr[q, 0, :m] = wm[:m]
+            arr[q, 1, :m] = st[:m, 0] - model.s0[0]
+            arr[q, 2, :m] = np.degrees(st[:m, 1])
+            arr[q, 3, :m] = np.degrees(st[:m, 2] - model.s0[2])
+            arr[q, 4, :m] = np.degrees(st[:m, 4])
+        for j, name in enumerate(["sample_wave", "sample_heave", "sample_roll", "sample_pitch", "sample_roll_rate"]):
+            ds[name] = (("sample", "time"), arr[:, j])
+        ds = ds.assign_coords(sample=np.array(keys, np.int64), time=np.arange(n) * model.dt)
+    ds.attrs.update(condition_attrs(model))
+    return annotate(ds)
+
+
+def condition_attrs(model: Model) -> dict:
+    c = model.cond
+    return {"ship": model.ship.name, "condition": c["name"], "spectrum": model.sea.kind, "hs": model.sea.hs,
+            "tp": model.sea.tp if model.sea.tp is not None else -1.0, "n_components": model.sea.n_components,
+            "discretisation": model.sea.method, "randomise": int(model.sea.randomise),
+            "speed_kn": float(c["speed_kn"]), "heading_deg": float(c["heading_deg"]), "duration": float(c["duration"]),
+            "dt": model.dt, "seed": int(c["seed"]), "stations": len(model.sec.x), "kg": float(model.st["kg"]),
+            "gm": float(model.st["gm"]), "roll_period": model.roll_period}
+
+
+def merge(shards: list[xr.Dataset]) -> xr.Dataset:
+    """Merge shard datasets (in record order) into the condition's ensemble dataset, with derived
+    statistics: mean, standard deviation, skewness and kurtosis per DOF, roll autocorrelation,
+    mean response spectra, exposure time, capsize count and rate."""
+    shards = sorted(shards, key=lambda d: int(d["record"][0]) if d.sizes["record"] else 0)
+    rec_vars = ["steps", "capsized", "capsize_time", "roll_max", "moment_sums"]
+    ev = {"crossing": [v for v in shards[0].data_vars if v.startswith("crossing_")],
+          "peak": ["peak_record", "peak_time", "peak_value"],
+          "envelope_peak": ["envelope_peak_record", "envelope_peak_time", "envelope_peak_value"]}
+    out = xr.concat([d[rec_vars] for d in shards], dim="record")
+    for dim, names in ev.items():
+        out = out.merge(xr.concat([d[names] for d in shards], dim=dim))
+    for v in ["acov_sum", "acov_count", "psd_count"] + [f"{s}_psd_sum" for s in SERIES] + [f"hist_{k}" for k in DOFS]:
+        out[v] = sum(d[v] for d in shards)
+    smp = [d[[v for v in d.data_vars if v.startswith("sample_")]] for d in shards if "sample" in d.dims]
+    if smp:
+        out = out.merge(xr.concat(smp, dim="sample"))
+    out = out.assign_coords(threshold=shards[0]["threshold"])
+    dt = shards[0].attrs["dt"]
+    n = out["steps"].values.astype(float) + 1  # samples per record
+    S = out["moment_sums"].sum("record")
+    N = n.sum()
+    mean = S.sel(order=1) / N
+    m2 = S.sel(order=2) / N - mean**2
+    m3 = S.sel(order=3) / N - 3 * mean * S.sel(order=2) / N + 2 * mean**3
+    m4 = S.sel(order=4) / N - 4 * mean * S.sel(order=3) / N + 6 * mean**2 * S.sel(order=2) / N - 3 * mean**4
+    for k in DOFS:  # heave [m], roll and pitch [degree]: one variable each, with its units
+        out[f"{k}_mean"] = mean.sel(dof=k, drop=True)
+        out[f"{k}_std"] = np.sqrt(m2.sel(dof=k, drop=True))
+    out["skewness"] = m3 / m2**1.5
+    out["kurtosis"] = m4 / m2**2
+    acf = out["acov_sum"] / out["acov_count"].where(out["acov_count"] > 0)
+    out["roll_autocorrelation"] = acf / acf.isel(lag=0)
+    for s in SERIES:
+        out[f"{s}_psd"] = out[f"{s}_psd_sum"] / max(int(out["psd_count"]), 1)
+    hours = float(out["steps"].sum()) * dt / 3600.0
+    out["exposure_hours"] = ((), hours)
+    out["capsize_count"] = ((), int(out["capsized"].sum()))
+    out["capsize_rate"] = ((), int(out["capsized"].sum()) / hours)
+    out.attrs.update(shards[0].attrs)
+    out.attrs["n_records"] = int(out.sizes["record"])
+    return annotate(out)
+
+
+def quantile_from_histogram(hist: np.ndarray, centres: np.ndarray, q: float) -> float:
+    """Quantile of a fixed-bin histogram by linear interpolation of its CDF."""
+    w = centres[1] - centres[0]
+    edges = np.concatenate([centres - 0.5 * w, [centres[-1] + 0.5 * w]])
+    cdf = np.concatenate([[0.0], np.cumsum(hist)]) / max(hist.sum(), 1)
+    return float(np.interp(q, cdf, edges))
+
+
+def decorrelation_time(acf: xr.DataArray, level: float = 0.05) -> float:
+    """Time after which the envelope of the autocorrelation stays below ``level`` (paper 003,
+    section 5): the envelope is |acf + i H[acf]|; returns the first lag beyond its last exceedance."""
+    a = np.nan_to_num(acf.values)
+    env = np.abs(hilbert(np.concatenate([a[::-1][:-1], a])))[len(a) - 1:]
+    above = np.nonzero(env >= level)[0]
+    lag = acf["lag"].values
+    k = min(above[-1] + 1, len(lag) - 1) if len(above) else 0
+    return float(lag[k])

@@ -1,0 +1,257 @@
+"""Split-time method (paper 003): capsize rate = crossing rate x P(capsize | crossing).
+
+Non-rare problem
+    Up-crossings of +phi_thr and down-crossings of -phi_thr in the ensemble records (stored by the
+    ensemble step with the roll rate by linear interpolation). Crossing rate, eq. 2:
+    lambda = N_U / (N_T dt), with a binomial (Clopper-Pearson) interval on N_U out of N_T samples.
+Rare problem (motion perturbation method)
+    For each crossing the record's seaway is regenerated from (master seed, record) and the record
+    re-simulated (bit-identical to the ensemble run) up to the RK4 step just before the crossing.
+    From that exact state the roll rate is increased by delta (in the direction of the crossing)
+    and the motion followed in the same waves for ``window_periods`` roll periods; it stops at
+    once if roll passes 90 deg (capsize). The smallest capsizing delta is found by bisection to
+    ``tolerance`` deg/s. Metric: y = phidot_U / phidot_Cr with phidot_Cr = phidot_U + delta, so
+    y = 1 at capsize and the distribution is extrapolated to y = 1 as the seed's text describes
+    (eq. 1 as printed, 1 - phidot_U / phidot_Cr, is 0 at capsize; its complement is used).
+Declustering
+    Crossings of the same threshold in the same record closer than the decorrelation time (roll
+    autocorrelation envelope below 0.05) form a cluster; the largest metric is kept.
+Extrapolation
+    GPD fit (maximum likelihood, scipy.stats.genpareto as in the extremes step) to the declustered
+    metric above its ``metric_quantile``; P(capsize | cluster) = (n_u / n) * GPD survival(1 - u)
+    (zero when the fitted upper bound u - sigma / xi lies below 1). Capsize rate
+    lambda_c = (clusters / hours) * P, with a bootstrap-over-records percentile interval.
+Validation
+    The sample is the first ``sample_hours`` of the ensemble; the brute-force rate is the number of
+    capsized records among all other records over their exposure (Garwood Poisson interval).
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import xarray as xr
+from scipy import stats
+
+from stabflow.dynamics._kernels import _simulate
+from stabflow.dynamics.tables import kernel_args
+from stabflow.statistics.ensemble import Model, decorrelation_time, simulate_record, wave_table
+from stabflow.statistics.extremes import decluster, gpd_mle
+from stabflow.io import annotate
+
+
+def bisect_critical(capsizes, dmax: float, tol: float) -> tuple[float, int]:
+    """Smallest perturbation in [0, dmax] for which ``capsizes(delta)`` is True, to ``tol``.
+
+    Returns (delta, runs); delta = 0 if the unperturbed motion capsizes, inf if even ``dmax`` does
+    not. Assumes capsizing is monotonic in delta over the bracket (checked at both ends).
+    """
+    runs = 1
+    if capsizes(0.0):
+        return 0.0, runs
+    runs += 1
+    if not capsizes(dmax):
+        return np.inf, runs
+    lo, hi = 0.0, dmax
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        runs += 1
+        if capsizes(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi, runs
+
+
+def crossing_rate(n_cross: int, n_samples: int, dt: float, alpha: float = 0.05):
+    """Eq. 2, lambda = N_U / (N_T dt) [1/h], with the Clopper-Pearson binomial interval."""
+    lam = n_cross / (n_samples * dt) * 3600.0
+    lo = stats.beta.ppf(alpha / 2, n_cross, n_samples - n_cross + 1) if n_cross > 0 else 0.0
+    hi = stats.beta.ppf(1 - alpha / 2, n_cross + 1, n_samples - n_cross)
+    return lam, lo / dt * 3600.0, hi / dt * 3600.0
+
+
+def poisson_interval(k: int, hours: float, alpha: float = 0.05):
+    """Garwood exact interval of a Poisson rate k / hours [1/h]."""
+    lo = stats.chi2.ppf(alpha / 2, 2 * k) / 2 if k > 0 else 0.0
+    hi = stats.chi2.ppf(1 - alpha / 2, 2 * k + 2) / 2
+    return k / hours, lo / hours, hi / hours
+
+
+def critical_perturbations(model: Model, records, steps, sides, window: int, dmax_deg: float, tol_deg: float,
+                           threads: int = 1, progress: bool = False):
+    """Critical roll-rate perturbation [deg/s] for each crossing (record, step before the crossing,
+    side +1/-1). Crossings of one record share its regenerated seaway; records run in parallel
+    threads (the RK4 kernel releases the GIL). Returns (delta [deg/s], bisection runs) per crossing."""
+    from tqdm import tqdm
+
+    args = kernel_args(model.sec, model.tables)
+    records = np.asarray(records)
+    steps = np.asarray(steps)
+    sides = np.asarray(sides)
+    delta = np.full(len(records), np.nan)
+    runs = np.zeros(len(records), np.int64)
+    cap = np.radians(90.0)
+    nofo = np.empty((0, 6))
+
+    def one_record(r):
+        idx = np.nonzero(records == r)[0]
+        wtab = wave_table(model, int(r))
+        states, _ = simulate_record(model, int(r), wtab=wtab)
+        buf = np.empty((model.nsteps + 1, 6))
+        for c in idx:
+            n0 = int(steps[c])
+            n1 = min(n0 + window, model.nsteps)
+            s0 = states[n0].copy()
+
+            def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c]):
+                s = s0.copy()
+                s[4] += side * np.radians(d)
+                last = _simulate(*args, model.p, wtab, model.dt, n0, n1, s, cap, buf, nofo)
+                return last < n1 or abs(buf[last, 1]) > cap
+
+            delta[c], runs[c] = bisect_critical(capsizes, dmax_deg, tol_deg)
+        return len(idx)
+
+    todo = np.unique(records)
+    with ThreadPoolExecutor(max_workers=max(1, threads)) as ex:
+        for _ in tqdm(ex.map(one_record, todo), total=len(todo), desc="perturbations (records)",
+                      disable=not progress, mininterval=10):
+            pass
+    return delta, runs
+
+
+def capsize_probability(y, u: float):
+    """(P(Y >= 1), xi, sigma, n_u) from declustered metrics ``y``: GPD fitted to the excesses over
+    ``u`` and evaluated at y = 1 (empirical fraction if fewer than 3 excesses or u >= 1)."""
+    y = np.asarray(y, float)
+    if len(y) == 0:
+        return 0.0, np.nan, np.nan, 0
+    exc = y[y > u] - u
+    if len(exc) < 3 or u >= 1.0:
+        return float(np.mean(y >= 1.0)), np.nan, np.nan, len(exc)
+    xi, sig = gpd_mle(exc)
+    return float(len(exc) / len(y) * stats.genpareto.sf(1.0 - u, xi, scale=sig)), xi, sig, len(exc)
+
+
+def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress: bool = False) -> xr.Dataset:
+    """Split-time capsize rate from the first ``sample_hours`` of the ensemble at each threshold,
+    against the brute-force rate of the other records."""
+    dt = float(ens.attrs["dt"])
+    duration = float(ens.attrs["duration"])
+    tau = decorrelation_time(ens["roll_autocorrelation"])
+    nrec = max(1, int(round(cfg["sample_hours"] * 3600.0 / duration)))
+    rec_all = ens["record"].values
+    sample = rec_all[:nrec]
+    in_s = np.isin(rec_all, sample)
+    n_samples = int((ens["steps"].values[in_s] + 1).sum())
+    hours = float(ens["steps"].values[in_s].sum()) * dt / 3600.0
+    bf_k = int(ens["capsized"].values[~in_s].sum())
+    bf_hours = float(ens["steps"].values[~in_s].sum()) * dt / 3600.0
+    bf, bf_lo, bf_hi = poisson_interval(bf_k, bf_hours, cfg["alpha"]) if bf_hours > 0 else (np.nan,) * 3
+    window = int(round(cfg["window_periods"] * model.roll_period / dt))
+    thresholds = list(ens["threshold"].values)
+    rng = np.random.default_rng(int(cfg["seed"]))
+    res = []
+    cross_rows = []
+    for thr in cfg["thresholds_deg"]:
+        if thr not in thresholds:
+            raise ValueError(f"splittime threshold {thr} deg is not among the ensemble's thresholds {thresholds}")
+        j = thresholds.index(thr)
+        m = (ens["crossing_threshold"].values == j) & np.isin(ens["crossing_record"].values, sample)
+        rec = ens["crossing_record"].values[m]
+        t = ens["crossing_time"].values[m]
+        rate_u = np.abs(ens["crossing_roll_rate"].values[m])
+        side = ens["crossing_side"].values[m]
+        step = ens["crossing_step"].values[m]
+        delta, runs = critical_perturbations(model, rec, step, side, window, cfg["max_perturbation"],
+                                             cfg["tolerance"], threads, progress)
+        y = np.where(np.isfinite(delta), rate_u / (rate_u + delta), rate_u / (rate_u + cfg["max_perturbation"]))
+        # declustering: same threshold, same record, closer than tau; keep the largest metric
+        # (decluster() keeps cluster maxima of values above a level: use y + 1 > 0)
+        yc, rc, tc = decluster(rec, t, y + 1.0, 0.0, tau)
+        yc = yc - 1.0
+        u = float(np.quantile(yc, cfg["metric_quantile"])) if len(yc) else 0.0
+        p, xi, sig, n_u = capsize_probability(yc, u)
+        lam_cl = len(yc) / hours
+        lam_c = lam_cl * p
+        raw, raw_lo, raw_hi = crossing_rate(len(rec), n_samples, dt, cfg["alpha"])
+        # bootstrap over records: clusters, GPD and P refitted
+        boots = np.empty(int(cfg["n_boot"]))
+        by = {r: yc[rc == r] for r in np.unique(rc)}
+        for b in range(len(boots)):
+            pick = rng.choice(sample, size=len(sample), replace=True)
+            yb = np.concatenate([by.get(r, np.zeros(0)) for r in pick])
+            hb = float(ens["steps"].sel(record=pick).sum()) * dt / 3600.0
+            ub = float(np.quantile(yb, cfg["metric_quantile"])) if len(yb) else 0.0
+            boots[b] = len(yb) / hb * capsize_probability(yb, ub)[0]
+        lo, hi = np.quantile(boots, [cfg["alpha"] / 2, 1 - cfg["alpha"] / 2])
+        res.append(dict(thr=thr, n_cross=len(rec), raw=raw, raw_lo=raw_lo, raw_hi=raw_hi, n_cl=len(yc), lam_cl=lam_cl,
+                        u=u, xi=xi, sig=sig, n_u=n_u, p=p, lam=lam_c, lo=lo, hi=hi, runs=int(runs.sum()),
+                        inside=int(lo <= bf <= hi), capsized_crossings=int(np.sum(delta == 0))))
+        cross_rows.append((np.full(len(rec), thr), rec, t, side, rate_u, delta, y))
+    R = {k: np.array([r[k] for r in res]) for k in res[0]}
+    C = [np.concatenate(c) for c in zip(*cross_rows)]
+    ds = xr.Dataset(
+        {
+            "crossings": ("split_threshold", R["n_cross"]),
+            "crossing_rate_raw": ("split_threshold", R["raw"]),
+            "crossing_rate_lower": ("split_threshold", R["raw_lo"]),
+            "crossing_rate_upper": ("split_threshold", R["raw_hi"]),
+            "clusters": ("split_threshold", R["n_cl"]),
+            "cluster_rate": ("split_threshold", R["lam_cl"]),
+            "metric_threshold": ("split_threshold", R["u"]),
+            "metric_gpd_shape": ("split_threshold", R["xi"]),
+            "metric_gpd_scale": ("split_threshold", R["sig"]),
+            "metric_exceedances": ("split_threshold", R["n_u"]),
+            "capsize_probability": ("split_threshold", R["p"]),
+            "capsize_rate_splittime": ("split_threshold", R["lam"]),
+            "capsize_rate_lower": ("split_threshold", R["lo"]),
+            "capsize_rate_upper": ("split_threshold", R["hi"]),
+            "perturbed_runs": ("split_threshold", R["runs"]),
+            "capsizing_crossings": ("split_threshold", R["capsized_crossings"]),
+            "inside": ("split_threshold", R["inside"]),
+            "capsize_rate_bruteforce": ((), bf),
+            "capsize_rate_bruteforce_lower": ((), bf_lo),
+            "capsize_rate_bruteforce_upper": ((), bf_hi),
+            "bruteforce_capsizes": ((), bf_k),
+            "bruteforce_hours": ((), bf_hours),
+            "sample_hours": ((), hours),
+            "decorrelation_time": ((), tau),
+            "crossing_threshold_deg": ("event", C[0]),
+            "crossing_record": ("event", C[1].astype(np.int64)),
+            "crossing_time": ("event", C[2]),
+            "crossing_side": ("event", C[3].astype(np.int8)),
+            "crossing_roll_rate": ("event", C[4]),
+            "critical_perturbation": ("event", C[5]),
+            "metric": ("event", C[6]),
+        },
+        coords={"split_threshold": np.array(cfg["thresholds_deg"], float)},
+    )
+    ds.attrs.update(ship=ens.attrs["ship"], condition=ens.attrs["condition"], window_steps=window,
+                    tolerance=float(cfg["tolerance"]), max_perturbation=float(cfg["max_perturbation"]),
+                    interval=f"bootstrap over records, {int(cfg['n_boot'])} resamples", fit="GPD MLE (scipy)",
+                    metric="y = phidot_U / (phidot_U + delta_cr)")
+    return annotate(ds)
+
+
+def perturbed_histories(model: Model, record: int, step: int, side: int, deltas, window: int):
+    """Roll [deg] of the unperturbed record and of perturbed runs (roll rate + side * delta [deg/s])
+    from ``step`` over ``window`` steps (paper 003 Fig. 4). Returns (t, unperturbed, list of runs)."""
+    wtab = wave_table(model, int(record))
+    states, last = simulate_record(model, int(record), wtab=wtab)
+    n1 = min(step + window, model.nsteps)
+    t = np.arange(step, n1 + 1) * model.dt
+    runs = []
+    for d in deltas:
+        s = states[step].copy()
+        s[4] += side * np.radians(d)
+        buf = np.full((model.nsteps + 1, 6), np.nan)
+        _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, step, n1, s, np.radians(90.0),
+                        buf, np.empty((0, 6)))
+        runs.append(np.degrees(buf[step: n1 + 1, 1]))
+    base = np.full(len(t), np.nan)
+    m = min(last, n1)
+    base[: m - step + 1] = np.degrees(states[step: m + 1, 1])
+    return t, base, runs

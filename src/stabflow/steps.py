@@ -1,0 +1,321 @@
+"""One function per pipeline step (Snakemake rule): read the inputs, call the library, write the
+outputs atomically. The workflow scripts (``workflow/scripts/*.py``) and the command line
+(:mod:`stabflow.cli`) both call these, so a step gives the same files either way."""
+
+from __future__ import annotations
+
+import xarray as xr
+
+from stabflow import StabflowError
+from stabflow.config import load_ship
+
+
+def _open_optional(path) -> xr.Dataset | None:
+    """The dataset at ``path`` loaded into memory, or None when no path is given."""
+    if not path:
+        return None
+    with xr.open_dataset(path) as d:
+        return d.load()
+
+
+def run_hull(ship_yaml, out_nc, figure=None) -> xr.Dataset:
+    """hull step: stations and Bonjean tables → NetCDF (+ body plan figure)."""
+    from stabflow.geometry import build_hull
+    from stabflow.io import write_netcdf
+    from stabflow.plots.geometry import body_plan
+
+    ship = load_ship(ship_yaml)
+    ds = build_hull(ship)
+    if figure:
+        body_plan(ds, figure)
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_statics(ship_yaml, hull_nc, out_nc, figure=None) -> xr.Dataset:
+    """statics step: particulars and calm-water GZ → NetCDF (+ GZ figure)."""
+    from stabflow.io import write_netcdf
+    from stabflow.plots.hydrostatics import gz_curves
+    from stabflow.hydrostatics.statics import compute_statics
+
+    ship = load_ship(ship_yaml)
+    with xr.open_dataset(hull_nc) as h:
+        hull = h.load()
+    ds = compute_statics(ship, hull)
+    if figure:
+        gz_curves({"calm water": ds["gz"]}, figure, title=f"{ship.name}: calm-water GZ, free trim", gm=float(ds["gm"]))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def _load_statics(ship_yaml, hull_nc, statics_nc):
+    ship = load_ship(ship_yaml)
+    with xr.open_dataset(hull_nc) as h, xr.open_dataset(statics_nc) as s:
+        return ship, h.load(), s.load()
+
+
+def run_waves(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, fig_gm=None, fig_gz=None) -> xr.Dataset:
+    """waves step: wave-pass GM(x_c), GZ(phi; x_c) and crest/trough/calm GZ → NetCDF + figures."""
+    import numpy as np
+
+    from stabflow.geometry import Sections
+    from stabflow.io import write_netcdf
+    from stabflow.plots.hydrostatics import gz_curves
+    from stabflow.plots.stability_in_waves import gm_wave_pass
+    from stabflow.stability_in_waves.wave_pass import crest_trough_calm, wave_pass
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    sec = Sections(hull)
+    V, lcg, kg, L = (float(st[k]) for k in ("volume", "lcg", "kg", "lwl"))
+    heel = np.round(np.arange(0.0, cfg["heel_max"] + 1e-9, cfg["heel_step"]), 10)
+    ds = wave_pass(sec, V, lcg, kg, L, cfg["wavelength_ratios"], cfg["steepness"], cfg["crest_positions"], heel)
+    ct = crest_trough_calm(sec, V, lcg, kg, L, cfg["crest_trough_steepness"], np.round(np.arange(0.0, 180.01, 1.0), 10))
+    unconverged = ds.attrs["unconverged_points"] + ct.attrs["unconverged_points"]
+    ds = xr.merge([ds, ct.rename(heel="heel_full")], compat="override")
+    ds.attrs["unconverged_points"] = unconverged
+    ds["heel_full"].attrs.update(units="degree", long_name="heel angle of the crest/trough/calm curves")
+    ds.attrs.update(ship=ship.name, lwl=L, kg=kg, crest_trough_steepness=cfg["crest_trough_steepness"])
+    if fig_gm:
+        gm_wave_pass(ds, fig_gm, float(st["gm"]), title=f"{ship.name}: GM as the wave crest passes")
+    if fig_gz:
+        s = cfg["crest_trough_steepness"]
+        gz_curves({"crest amidships": ct["gz_crest"], "trough amidships": ct["gz_trough"], "calm water": ct["gz_calm"]},
+                  fig_gz, title=f"{ship.name}: GZ on a wave λ = L, H/λ = {s:g}")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_early_stage(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, out_csv=None) -> xr.Dataset:
+    """early_stage step: GM_cr and metric C per sea state → NetCDF (+ CSV)."""
+    from stabflow.stability_in_waves.early_stage import assess
+    from stabflow.geometry import Sections
+    from stabflow.io import atomic_text, write_netcdf
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    ds = assess(Sections(hull), *(float(st[k]) for k in ("volume", "lcg", "kg", "km", "lwl", "bwl")), cfg["sea_states"], cfg)
+    ds.attrs["ship"] = ship.name
+    if out_csv:
+        df = ds.to_dataframe().reset_index()
+        df.insert(0, "ship", ship.name)
+        atomic_text(df.to_csv(index=False, float_format="%.6g"), out_csv)
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_early_stage_summary(metric_ncs, out_csv, out_png):
+    """All ships' metric C in one CSV table and a bar chart (paper 002, Figure 6)."""
+    import pandas as pd
+
+    from stabflow.io import atomic_text
+    from stabflow.plots.stability_in_waves import metric_bars
+
+    frames = []
+    for f in metric_ncs:
+        with xr.open_dataset(f) as ds:
+            df = ds[["hs", "tm", "metric_c", "mean_tbc"]].to_dataframe().reset_index()
+            df.insert(0, "ship", ds.attrs["ship"])
+            df["gm_cr"] = float(ds["gm_cr"])
+            frames.append(df)
+    table = pd.concat(frames, ignore_index=True)
+    atomic_text(table.to_csv(index=False, float_format="%.6g"), out_csv)
+    metric_bars(table, out_png)
+    return table
+
+
+def run_hydro(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc) -> xr.Dataset:
+    """hydro step: Capytaine coefficients at the natural frequencies and linear peer RAOs → NetCDF."""
+    from stabflow.dynamics import coefficients
+    from stabflow.dynamics.hydro import bem_mesh, hydro_dataset
+    from stabflow.dynamics.linear import stiffness_matrix
+    from stabflow.dynamics.model import equilibrium
+    from stabflow.geometry import Sections
+    from stabflow.io import write_netcdf
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    cond = {c["name"]: c for c in rao_cfg["conditions"]}[condition]
+    sec = Sections(hull)
+    co = coefficients(ship, sec, st)
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    C = stiffness_matrix(sec, ship.rho, float(st["lcg"]), float(st["kg"]), h0, th0)
+    ds = hydro_dataset(bem_mesh(ship), st, co, ship.rho, cond["heading"], float(st["lwl"]), rao_cfg["wavelength_ratios"], C, h0, th0)
+    ds.attrs.update(ship=ship.name, condition=condition, note="zero speed (Capytaine without forward speed)")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc, fig=None, hydro_nc=None) -> xr.Dataset:
+    """rao step: regular-wave sweep of the time-domain model for one condition → NetCDF + figure.
+
+    With ``hydro_nc`` (Capytaine) the added mass and damping come from it and its linear RAOs are
+    plotted beside the time-domain ones."""
+    from stabflow.dynamics import coefficients
+    from stabflow.dynamics.rao import rao_sweep
+    from stabflow.constants import KNOT
+    from stabflow.geometry import Sections
+    from stabflow.io import write_netcdf
+    from stabflow.plots.dynamics import rao_curves
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    cond = {c["name"]: c for c in rao_cfg["conditions"]}[condition]
+    sec = Sections(hull)
+    hydro = _open_optional(hydro_nc)
+    co = coefficients(ship, sec, st, hydro if ship.data["dynamics"]["hydro"] == "capytaine" else None)
+    ds = rao_sweep(sec, st, co, ship.rho, float(st["lwl"]), rao_cfg["wavelength_ratios"], rao_cfg["steepness"],
+                   cond["heading"], cond["speed_kn"] * KNOT, rao_cfg["dt"])
+    ds.attrs.update(ship=ship.name, condition=condition, roll_period=co.natural_period("roll"),
+                    heave_period=co.natural_period("heave"), pitch_period=co.natural_period("pitch"),
+                    hydro=ship.data["dynamics"]["hydro"])
+    if fig:
+        rao_curves(ds, fig, peer=hydro, title=f"{ship.name}, {condition}: heading {cond['heading']:g}°, {cond['speed_kn']:g} kn, "
+                   f"H/λ = {rao_cfg['steepness']:g}")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
+    """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
+    from stabflow.io import write_netcdf
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.statics import statics_checks
+
+    ship = load_ship(ship_yaml)
+    with xr.open_dataset(hull_nc) as h, xr.open_dataset(statics_nc) as s:
+        hull, st = h.load(), s.load()
+    ds = checks_dataset(ship.name, "statics", statics_checks(ship, hull, st))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_waves(ship_yaml, hull_nc, statics_nc, waves_nc, metric_nc, es_cfg: dict, out_nc) -> xr.Dataset:
+    """validation of the waves and early-stage steps → NetCDF rows."""
+    from stabflow.io import write_netcdf
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.waves import waves_checks
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    with xr.open_dataset(waves_nc) as w, xr.open_dataset(metric_nc) as m:
+        waves, metric = w.load(), m.load()
+    ds = checks_dataset(ship.name, "waves", waves_checks(ship, hull, st, waves, metric, es_cfg))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_dynamics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
+    """validation of the 3-DOF time-domain model → NetCDF rows."""
+    from stabflow.io import write_netcdf
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.dynamics import dynamics_checks
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    ds = checks_dataset(ship.name, "dynamics", dynamics_checks(ship, hull, st))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_ensemble(ship_yaml, cond: dict, ensemble_nc, out_nc, extremes_nc=None, splittime_nc=None,
+                          hydro_nc=None) -> xr.Dataset:
+    """validation of an ensemble condition (seaway, step size) and of its extremes and split-time
+    estimates against the brute force → NetCDF rows (key ``<ship>_<condition>``)."""
+    from stabflow.statistics.ensemble import build_model
+    from stabflow.io import write_netcdf
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.ensemble import ensemble_checks
+
+    model = build_model(load_ship(ship_yaml), cond, _open_optional(hydro_nc))
+    ens = _open_optional(ensemble_nc)
+    rows = ensemble_checks(model, ens, _open_optional(extremes_nc), _open_optional(splittime_nc))
+    ds = checks_dataset(model.ship.name, "ensemble", rows)
+    ds.attrs["condition"] = cond["name"]
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_ensemble_shard(ship_yaml, cond: dict, shard: int, out_nc, threads: int = 1, hydro_nc=None, progress=True):
+    """ensemble step, one shard: records [shard * shard_records, ...) of condition ``cond`` → NetCDF."""
+    import numba
+
+    from stabflow.statistics.ensemble import build_model, run_shard
+    from stabflow.io import write_netcdf
+
+    ship = load_ship(ship_yaml)
+    hydro = _open_optional(hydro_nc)
+    numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+    model = build_model(ship, cond, hydro)
+    n = int(cond["shard_records"])
+    recs = range(shard * n, min((shard + 1) * n, int(cond["records"])))
+    if len(recs) == 0:
+        raise StabflowError(f"ensemble {cond['name']}: shard {shard} is beyond records = {cond['records']}")
+    ds = run_shard(model, recs, progress=progress)
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_ensemble_merge(shard_ncs, out_nc, fig_distribution=None, fig_spectra=None, fig_samples=None):
+    """ensemble step, merge: shards → ensemble NetCDF + figures."""
+    from stabflow.statistics.ensemble import merge
+    from stabflow.io import write_netcdf
+    from stabflow.plots.ensemble import response_spectra, roll_distribution, time_histories
+
+    shards = []
+    for p in shard_ncs:
+        with xr.open_dataset(p) as d:
+            shards.append(d.load())
+    ens = merge(shards)
+    a = ens.attrs
+    head = (f"{a['condition']}: Hs {a['hs']:g} m, Tp {a['tp']:g} s, {a['speed_kn']:g} kn, "
+            f"heading {a['heading_deg']:g}°, {float(ens['exposure_hours']):.0f} h")
+    if fig_distribution:
+        roll_distribution(ens, fig_distribution, f"Roll distribution: {head}")
+    if fig_spectra:
+        response_spectra(ens, fig_spectra, f"Encounter spectra: {head}")
+    if fig_samples:
+        time_histories(ens, fig_samples, f"Sample records: {head}")
+    write_netcdf(ens, out_nc)
+    return ens
+
+
+def run_extremes(ensemble_nc, cfg: dict, out_nc, fig_threshold=None, fig_rate=None, fig_validation=None):
+    """extremes step: envelope POT + GPD rates from sample blocks, validated against the ensemble."""
+    from stabflow.statistics.extremes import analyse
+    from stabflow.io import write_netcdf
+    from stabflow.plots.extremes import exceedance_rate_curve, extremes_validation, threshold_diagnostics
+
+    with xr.open_dataset(ensemble_nc) as e:
+        ens = e.load()
+    ds, extra = analyse(ens, cfg, progress=True)
+    a = ens.attrs
+    head = f"{a['condition']}: Hs {a['hs']:g} m, {a['speed_kn']:g} kn, heading {a['heading_deg']:g}°"
+    if fig_threshold:
+        threshold_diagnostics(extra["sample_series"], extra["tau"], extra["u"], float(ds["sample_roll_std"][0]),
+                              fig_threshold, f"Threshold selection ({extra['hours']:.0f} h sample): {head}")
+    if fig_rate:
+        exceedance_rate_curve(extra, ds["target"].values, fig_rate, f"Roll exceedance rate: {head}")
+    if fig_validation:
+        extremes_validation(ds, fig_validation, f"GPD from {extra['hours']:.0f} h samples vs brute force "
+                            f"({ds.attrs['ensemble_hours']:.0f} h): {head}")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_splittime(ship_yaml, cond: dict, ensemble_nc, cfg: dict, out_nc, figures: dict | None = None, threads: int = 1,
+                  hydro_nc=None):
+    """splittime step: crossings, motion perturbations, GPD of the metric → capsize rate + figures."""
+    import numba
+
+    from stabflow.statistics.ensemble import build_model
+    from stabflow.io import write_netcdf
+    from stabflow.plots.splittime import splittime_figures
+    from stabflow.statistics.splittime import analyse
+
+    hydro = _open_optional(hydro_nc)
+    numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+    model = build_model(load_ship(ship_yaml), cond, hydro)
+    with xr.open_dataset(ensemble_nc) as e:
+        ens = e.load()
+    ds = analyse(model, ens, cfg, threads=threads, progress=True)
+    if figures:
+        a = ens.attrs
+        splittime_figures(model, ds, figures, f"Split-time vs brute force: {a['condition']}, Hs {a['hs']:g} m, "
+                          f"{a['speed_kn']:g} kn, heading {a['heading_deg']:g}°")
+    write_netcdf(ds, out_nc)
+    return ds

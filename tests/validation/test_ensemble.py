@@ -1,0 +1,254 @@
+"""Irregular-sea validation rows: seaway, step size, extremes and split-time (stabflow.validation.ensemble)."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from stabflow.statistics import extremes, splittime
+from stabflow.config import load_pipeline, load_ship
+from stabflow.statistics.ensemble import build_model, merge, run_shard
+from stabflow.validation import KINDS, STATUSES, Check, checks_dataset
+from stabflow.validation.ensemble import (MIN_COVERAGE, RATIO_BAND, ensemble_checks, extremes_checks,
+                                          seaway_checks, splittime_checks, step_checks)
+from stabflow.waves.seaway import Seaway
+
+from ..conftest import ROOT, SHIPS
+
+RECORDS = 6
+
+
+@pytest.fixture(scope="module")
+def model():
+    """The test profile's barge beam-sea condition (Bretschneider Hs 3.5 m, Tp 10 s, 120 components,
+    0 kn, heading 90 deg, 900 s records), schema defaults filled in."""
+    cond = dict(load_pipeline(ROOT / "config" / "test.yaml")["ensembles"][0], name="barge_beam")
+    return build_model(load_ship(SHIPS / "barge.yaml"), cond)
+
+
+@pytest.fixture(scope="module")
+def ens(model):
+    return merge([run_shard(model, range(RECORDS), progress=False)])
+
+
+@pytest.fixture(scope="module")
+def rows(model, ens):
+    return ensemble_checks(model, ens)
+
+
+def _by_name(rows, start):
+    found = [c for c in rows if c.check.startswith(start)]
+    assert found, f"no row starting with {start!r} in {[c.check for c in rows]}"
+    return found
+
+
+def test_rows_exist_with_kinds_and_statuses(rows):
+    """Five seaway rows (independent), regeneration and two step-size rows (consistency), and the
+    extremes and split-time rows SKIPPED with the reason when those steps do not run."""
+    assert all(c.kind in KINDS and c.status in STATUSES for c in rows)
+    seaway = _by_name(rows, "seaway:")
+    assert len(seaway) == 5 and all(c.kind == "independent" for c in seaway)
+    step = _by_name(rows, "step size:")
+    assert len(step) == 2 and all(c.kind == "consistency" for c in step)
+    (reg,) = _by_name(rows, "ensemble records regenerated")
+    assert reg.kind == "consistency"
+    skipped = [c for c in rows if c.status == "SKIPPED"]
+    assert len(skipped) == 4
+    assert sum("extremes step does not run" in c.reason for c in skipped) == 2
+    assert sum("split-time step does not run" in c.reason for c in skipped) == 2
+    assert len(rows) == 12
+    ds = checks_dataset("barge", "ensemble", rows)  # the rows make a validation dataset
+    assert list(ds["status"].values).count("SKIPPED") == 4
+
+
+def test_seaway_rows_pass_with_the_test_tolerances(rows):
+    """The condition's own seaway (80 records x 900 s = 20 h) meets the tolerances of
+    tests/waves/test_seaway.py: variance 3 %, density 15 %, skewness 0.05, kurtosis 0.1, CDF 0.01."""
+    seaway = _by_name(rows, "seaway:")
+    assert [c.tolerance for c in seaway] == [3.0, 15.0, 0.05, 0.1, 0.01]
+    assert all(c.status == "PASS" and not c.reason for c in seaway), [(c.check, c.value) for c in seaway]
+    assert "80 records x 900 s" in seaway[0].check
+
+
+def test_step_rows(rows):
+    """Records regenerate bit for bit; roll sigma and q0.999 at dt = 0.5 s agree with dt = 0.1 s."""
+    (reg,) = _by_name(rows, "ensemble records regenerated")
+    assert reg.value == 0.0 and reg.status == "PASS"
+    sig, q = _by_name(rows, "step size:")
+    assert "dt = 0.5 s vs dt = 0.1 s" in sig.check and sig.tolerance == 0.5 and q.tolerance == 1.0
+    assert sig.unit == q.unit == "%"
+    assert sig.status == "PASS" and q.status == "PASS", (sig.value, q.value)
+    assert "capsized records" in sig.reference and "degree" in sig.reference
+
+
+def test_regeneration_detects_a_model_that_is_not_the_ensembles(model, ens):
+    """A dataset whose moment sums differ from the model's records fails the regeneration row, and
+    an ensemble without records gives FAIL rows with the reason, never NaN quietly."""
+    other = ens.copy(deep=True)
+    other["moment_sums"] = other["moment_sums"] * 1.01
+    reg = step_checks(model, other, records=2)[0]
+    assert reg.status == "FAIL" and reg.value == pytest.approx(0.01 / 1.01, rel=1e-6)
+    empty = step_checks(model, ens.isel(record=slice(0, 0)))
+    assert len(empty) == 3 and all(c.status == "FAIL" for c in empty)
+    assert all("the ensemble has no record" in c.reason for c in empty)
+
+
+def test_seaway_failure_is_a_fail_row(model):
+    bad = dataclasses.replace(model, sea=Seaway("no_such_spectrum", 3.5, 10.0, n_components=120))
+    seaway = seaway_checks(bad)
+    assert len(seaway) == 5 and all(c.kind == "independent" for c in seaway)
+    assert all(c.status == "FAIL" and c.reason.startswith("seaway synthesis failed") for c in seaway)
+
+
+# --------------------------------------------------------------------------------------------
+# extremes: synthetic datasets with known coverage, ratios and zero brute force
+
+
+def _extremes(cover, ratio, zero_bf=(), nan_est=(), partial_zero=(), blocks=50):
+    """Dataset shaped like extremes.analyse's: ``cover[j]`` of the blocks inside, estimate =
+    ``ratio[j]`` x brute force; targets in ``zero_bf`` never counted by the brute force."""
+    targets = np.array([30.0, 40.0, 50.0, 60.0])[: len(cover)]
+    nt = len(targets)
+    bf = np.tile(1e-3 * np.arange(1, nt + 1), (blocks, 1))
+    est = bf * np.asarray(ratio)
+    inside = np.zeros((blocks, nt), np.int8)
+    for j, c in enumerate(cover):
+        inside[: int(round(c * blocks)), j] = 1
+        if j in zero_bf:
+            bf[:, j] = 0.0
+        if j in nan_est:
+            est[:, j] = np.nan
+        if j in partial_zero:
+            bf[: blocks // 2, j] = 0.0
+    lo, hi = np.where(inside == 1, 0.5 * bf, 2 * bf + 1), np.where(inside == 1, 2 * bf + 1, 3 * bf + 2)
+    ratio_v = np.where(bf > 0, est / np.where(bf > 0, bf, 1), np.nan)
+    return xr.Dataset(
+        {"rate_estimate": (("block", "target"), est), "rate_lower": (("block", "target"), lo),
+         "rate_upper": (("block", "target"), hi), "rate_bruteforce": (("block", "target"), bf),
+         "bruteforce_hours": ("block", np.full(blocks, 9900.0)), "inside": (("block", "target"), inside),
+         "coverage": ("target", inside.mean(axis=0)), "rate_ratio": (("block", "target"), ratio_v)},
+        coords={"block": np.arange(blocks), "target": targets},
+        attrs={"interval": "bootstrap over records, 100 resamples, 95 %"})
+
+
+def test_extremes_rows_known_coverage_and_ratio():
+    """Coverage 94 % passes, 78 % and 84 % fail (the criterion is 0.90); median ratio 1.0 passes,
+    0.5 fails; two rows per target, both independent."""
+    rows = extremes_checks(_extremes([0.94, 0.78, 0.84], [1.0, 0.5, 1.39]))
+    assert len(rows) == 6 and all(c.kind == "independent" for c in rows)
+    cov = [c for c in rows if "coverage" in c.check]
+    rat = [c for c in rows if "median" in c.check]
+    assert [c.check.split(":")[0] for c in cov] == ["extremes 30 deg", "extremes 40 deg", "extremes 50 deg"]
+    assert "by the 95 % interval over 50 samples" in cov[0].check
+    assert [c.value for c in cov] == pytest.approx([0.94, 0.78, 0.84])
+    assert [c.status for c in cov] == ["PASS", "FAIL", "FAIL"]
+    assert all(c.lower == MIN_COVERAGE and c.upper is None and not c.reason for c in cov)
+    assert [c.value for c in rat] == pytest.approx([1.0, 0.5, 1.39])
+    assert [c.status for c in rat] == ["PASS", "FAIL", "PASS"]
+    assert all((c.lower, c.upper) == RATIO_BAND for c in rat)
+    assert "(9900.0 h on average)" in cov[0].reference
+
+
+def test_extremes_zero_brute_force_and_nan_ratio_are_fail_rows_with_reason():
+    rows = extremes_checks(_extremes([0.94, 1.0, 0.9, 0.9], [1.0, 1.0, 1.0, 1.0], zero_bf=(1,), nan_est=(2,),
+                                     partial_zero=(3,)))
+    assert len(rows) == 8
+    zero = [c for c in rows if c.check.startswith("extremes 40 deg")]
+    assert [c.status for c in zero] == ["FAIL", "FAIL"]
+    assert all("no exceedance of 40 deg in any of the 50 samples" in c.reason for c in zero)
+    assert all(np.isnan(c.value) for c in zero)  # NaN only as the value of a FAIL row with its reason
+    cov50, rat50 = [c for c in rows if c.check.startswith("extremes 50 deg")]
+    assert cov50.status == "PASS"
+    assert rat50.status == "FAIL" and "NaN in every sample with a brute-force count" in rat50.reason
+    cov60, rat60 = [c for c in rows if c.check.startswith("extremes 60 deg")]
+    assert rat60.status == "PASS" and rat60.value == pytest.approx(1.0)
+    assert "(median over 25 of 50 samples: brute force 0 or estimate NaN in the others)" in rat60.check
+
+
+def test_extremes_broken_or_absent_dataset():
+    broken = extremes_checks(_extremes([0.94], [1.0]).drop_vars("rate_bruteforce"))
+    assert [c.status for c in broken] == ["FAIL", "FAIL"] and all("rate_bruteforce" in c.reason for c in broken)
+    skipped = extremes_checks(None)
+    assert [c.status for c in skipped] == ["SKIPPED", "SKIPPED"]
+    assert all("extremes step does not run for this condition" in c.reason for c in skipped)
+
+
+# --------------------------------------------------------------------------------------------
+# split-time: synthetic datasets with known ratios and zero brute force
+
+
+def _splittime(lam, lo, hi, k=56, hours=10000.0):
+    thr = np.array([20.0, 25.0, 30.0])[: len(lam)]
+    return xr.Dataset(
+        {"capsize_rate_splittime": ("split_threshold", np.asarray(lam, float)),
+         "capsize_rate_lower": ("split_threshold", np.asarray(lo, float)),
+         "capsize_rate_upper": ("split_threshold", np.asarray(hi, float)),
+         "inside": ("split_threshold", np.zeros(len(lam), np.int8)),
+         "capsize_rate_bruteforce": ((), k / hours), "capsize_rate_bruteforce_lower": ((), 0.8 * k / hours),
+         "capsize_rate_bruteforce_upper": ((), 1.25 * k / hours), "bruteforce_capsizes": ((), k),
+         "bruteforce_hours": ((), hours)},
+        coords={"split_threshold": thr},
+        attrs={"interval": "bootstrap over records, 200 resamples"})
+
+
+def test_splittime_rows_known_ratios():
+    """Known results: 20 deg 4.0e-3 vs 5.6e-3 (0.71, passes), 25 deg 3.8e-3 (0.68, fails), 30 deg 0
+    (fails); inside 1 for 20 and 25 deg, 0 for 30 deg."""
+    rows = splittime_checks(_splittime([4.0e-3, 3.8e-3, 0.0], [2e-3, 1.9e-3, 0.0], [6e-3, 5.7e-3, 0.0]))
+    assert len(rows) == 6 and all(c.kind == "independent" for c in rows)
+    inside = [c for c in rows if "inside" in c.check]
+    ratio = [c for c in rows if "/ brute-force rate" in c.check]
+    assert [c.check.split(":")[0] for c in inside] == ["split-time 20 deg", "split-time 25 deg", "split-time 30 deg"]
+    assert [c.value for c in inside] == [1.0, 1.0, 0.0]
+    assert [c.status for c in inside] == ["PASS", "PASS", "FAIL"]
+    assert all((c.lower, c.upper) == (1.0, 1.0) for c in inside)
+    assert [c.value for c in ratio] == pytest.approx([4.0 / 5.6, 3.8 / 5.6, 0.0])
+    assert [c.status for c in ratio] == ["PASS", "FAIL", "FAIL"]
+    assert all(not c.reason for c in rows)
+    assert "56 capsized records in 10000.0 h" in ratio[0].reference
+
+
+def test_splittime_zero_brute_force_is_fail_with_reason_and_none_is_skipped():
+    rows = splittime_checks(_splittime([4.0e-3, 0.0], [2e-3, 0.0], [6e-3, 0.0], k=0))
+    assert len(rows) == 4 and all(c.status == "FAIL" for c in rows)
+    assert all("no capsize in 10000.0 h" in c.reason for c in rows)
+    nan = splittime_checks(_splittime([np.nan], [np.nan], [np.nan]))
+    assert [c.status for c in nan] == ["FAIL", "FAIL"]
+    assert "interval is NaN" in nan[0].reason and "rate is NaN" in nan[1].reason
+    broken = splittime_checks(_splittime([4.0e-3], [2e-3], [6e-3]).drop_vars("bruteforce_capsizes"))
+    assert [c.status for c in broken] == ["FAIL", "FAIL"]
+    assert all("split-time dataset unreadable" in c.reason and "bruteforce_capsizes" in c.reason for c in broken)
+    skipped = splittime_checks(None)
+    assert [c.status for c in skipped] == ["SKIPPED", "SKIPPED"]
+    assert all("split-time step does not run for this condition" in c.reason for c in skipped)
+
+
+def test_with_step_datasets_rows_are_appended(model, ens):
+    """With the datasets given, ensemble_checks carries their rows instead of the SKIPPED ones (a
+    model whose seaway cannot be built and an empty ensemble keep this fast: those rows FAIL)."""
+    bad = dataclasses.replace(model, sea=Seaway("no_such_spectrum", 3.5, 10.0, n_components=120))
+    rows = ensemble_checks(bad, ens.isel(record=slice(0, 0)), _extremes([0.94, 0.78], [1.0, 1.0]),
+                           _splittime([4.0e-3], [2e-3], [6e-3]))
+    assert len(rows) == 5 + 3 + 4 + 2
+    assert not any(c.status == "SKIPPED" for c in rows)
+    assert [c.status for c in rows[8:]] == ["PASS", "PASS", "FAIL", "PASS", "PASS", "PASS"]
+    assert all(isinstance(c, Check) for c in rows)
+
+
+def test_rows_from_the_steps_own_datasets(model, ens):
+    """The rows read the real datasets of extremes.analyse and splittime.analyse (test profile, half-
+    hour samples of the 6 records): two rows per target and threshold, no NaN without a reason.
+    The brute force of the split-time step sees no capsize in records 2-5: every row says so."""
+    cfg = load_pipeline(ROOT / "config" / "test.yaml")
+    ex, _ = extremes.analyse(ens, dict(cfg["extremes"], sample_hours=0.5))
+    sp = splittime.analyse(model, ens, dict(cfg["splittime"], sample_hours=0.5))
+    rows = extremes_checks(ex)
+    assert len(rows) == 2 * ex.sizes["target"]
+    for c in rows:
+        assert c.status in ("PASS", "FAIL") and c.kind == "independent"
+        assert np.isfinite(c.value) or (c.status == "FAIL" and c.reason), c
+    assert int(sp["bruteforce_capsizes"]) == 0
+    rows = splittime_checks(sp)
+    assert len(rows) == 2 * sp.sizes["split_threshold"]
+    assert all(c.status == "FAIL" and "counted no capsize" in c.reason for c in rows)
