@@ -28,7 +28,8 @@ import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
 from stabflow.config import load_pipeline, load_ship  # noqa: E402
-from stabflow.statistics.ensemble import build_model, merge, quantile_from_histogram, run_shard  # noqa: E402
+from stabflow.statistics.ensemble import build_model, merge, run_shard  # noqa: E402
+from stabflow.statistics.signals import quantile_from_histogram  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 COND = dict(name="bench", ship="dtmb5415", sea=dict(spectrum="bretschneider", hs=11.5, tp=16.4), speed_kn=10.0,

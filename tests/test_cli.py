@@ -63,3 +63,23 @@ def test_cli_help_lists_every_command(capsys):
         main(["--help"])
     out = capsys.readouterr().out
     assert all(name in out for name in COMMANDS)
+
+
+def test_compare_results_folders(tmp_path, capsys):
+    """`stabflow compare` tells byte-identical files, equal values and real differences apart."""
+    import numpy as np
+    import pytest
+
+    a, b = tmp_path / "a", tmp_path / "b"
+    for d in (a, b):
+        (d / "x").mkdir(parents=True)
+    ds = xr.Dataset({"v": ("i", np.arange(5.0))}, attrs={"ship": "s"})
+    ds.to_netcdf(a / "x" / "same.nc")
+    ds.to_netcdf(b / "x" / "same.nc")
+    ds.to_netcdf(a / "x" / "off.nc")
+    ds.assign(v=ds.v * (1 + 1e-13)).to_netcdf(b / "x" / "off.nc")
+    assert main(["compare", str(a), str(b), "--rtol", "1e-12"]) == 0
+    out = capsys.readouterr().out
+    assert "x/same.nc: identical bytes" in out and "max rel. diff" in out
+    with pytest.raises(SystemExit):
+        main(["compare", str(a), str(b)])

@@ -65,6 +65,24 @@ def _report(args):
     build_report(args.results, cfg["ships"], cfg, args.source, args.output)
 
 
+def _compare(args) -> int:
+    """Print how the NetCDF files of two results folders compare; non-zero exit if any differs by
+    more than ``--rtol``."""
+    from stabflow.io import compare_results
+
+    rows = compare_results(args.a, args.b)
+    bad = 0
+    for r in rows:
+        worse = not r["max_rel"] <= args.rtol
+        bad += worse
+        extra = f" max rel. diff {r['max_rel']:.3g} in {', '.join(r['variables'])}" if r["variables"] else ""
+        print(f"{'DIFF ' if worse else 'ok   '}{r['file']}: {r['status']}{extra}")
+    print(f"{len(rows)} files, {sum(r['status'] == 'identical bytes' for r in rows)} byte-identical, "
+          f"{bad} beyond rtol {args.rtol:g}")
+    if bad:
+        raise SystemExit(1)
+
+
 def _ensemble_merge(args):
     f = Path(args.figures) if args.figures else None
     figs = (f / "roll_distribution.png", f / "spectra.png", f / "time_histories.png") if f else ()
@@ -154,6 +172,10 @@ COMMANDS: dict[str, Command] = {
                       (CONFIG, (("--results",), {"default": "results"}), (("--source",), {"default": "report"}),
                        (("-o", "--output"), {"default": "results/report/html/index.html"})),
                       _report),
+    "compare": Command("compare the NetCDF files of two results folders (bit-identical reruns)",
+                       ((("a",), {}), (("b",), {}), (("--rtol",), {"type": float, "default": 0.0,
+                                                                   "help": "accepted relative difference"})),
+                       _compare),
     "gz": Command("print particulars and the GZ table of a ship",
                   (SHIP, (("--every",), {"type": float, "default": 10.0, "help": "print every N degrees"})), _gz),
 }

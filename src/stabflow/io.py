@@ -232,3 +232,52 @@ def atomic_text(text: str, path: str | Path) -> Path:
     with atomic_path(path) as tmp:
         Path(tmp).write_text(text)
     return Path(path)
+
+
+def compare_results(a: str | Path, b: str | Path) -> list[dict]:
+    """Compare every NetCDF file under folder ``a`` with the file at the same relative path under
+    ``b``: byte-identical, or else the largest relative difference over the numeric variables
+    (|x_a - x_b| / max|x_a|, NaN-aware) and the variables whose text or shape differs.
+
+    Returns one dict per file: ``file``, ``status`` ('identical bytes', 'equal values',
+    'different', 'missing'), ``max_rel`` and ``variables`` (names that differ).
+    """
+    import numpy as np
+
+    a, b = Path(a), Path(b)
+    rows = []
+    for fa in sorted(a.rglob("*.nc")):
+        rel = fa.relative_to(a)
+        fb = b / rel
+        if not fb.exists():
+            rows.append(dict(file=str(rel), status="missing", max_rel=np.nan, variables=[]))
+            continue
+        if fa.read_bytes() == fb.read_bytes():
+            rows.append(dict(file=str(rel), status="identical bytes", max_rel=0.0, variables=[]))
+            continue
+        with xr.open_dataset(fa) as da, xr.open_dataset(fb) as db:
+            worst, names = 0.0, []
+            for v in sorted(set(da.variables) | set(db.variables)):
+                if v not in da.variables or v not in db.variables or da[v].shape != db[v].shape:
+                    names.append(v)
+                    worst = np.inf
+                    continue
+                x, y = da[v].values, db[v].values
+                if x.dtype.kind in "fiuc":
+                    x, y = x.astype(float), y.astype(float)
+                    same = np.isnan(x) == np.isnan(y)
+                    d = np.abs(np.nan_to_num(x - y))
+                    scale = max(float(np.nanmax(np.abs(x))) if np.isfinite(x).any() else 0.0, 1e-300)
+                    r = float(d.max()) / scale if d.size else 0.0
+                    if r > 0 or not same.all():
+                        names.append(v)
+                        worst = max(worst, r if same.all() else np.inf)
+                elif not np.array_equal(x, y):
+                    names.append(v)
+                    worst = np.inf
+            if da.attrs != db.attrs:
+                names.append("(attributes)")
+                worst = np.inf
+        rows.append(dict(file=str(rel), status="equal values" if not names else "different", max_rel=worst,
+                         variables=names))
+    return rows

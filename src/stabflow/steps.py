@@ -87,12 +87,13 @@ def run_waves(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, fig_gm=None, fi
 
 def run_early_stage(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, out_csv=None) -> xr.Dataset:
     """early_stage step: GM_cr and metric C per sea state → NetCDF (+ CSV)."""
+    from stabflow.hydrostatics.statics import Particulars
     from stabflow.stability_in_waves.early_stage import assess
     from stabflow.geometry import Sections
     from stabflow.io import atomic_text, write_netcdf
 
     ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
-    ds = assess(Sections(hull), *(float(st[k]) for k in ("volume", "lcg", "kg", "km", "lwl", "bwl")), cfg["sea_states"], cfg)
+    ds = assess(Sections(hull), Particulars.from_statics(st), cfg["sea_states"], cfg)
     ds.attrs["ship"] = ship.name
     if out_csv:
         df = ds.to_dataframe().reset_index()

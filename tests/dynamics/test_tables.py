@@ -5,7 +5,7 @@ import copy
 import numpy as np
 import pytest
 
-from stabflow.hydrostatics._kernels import _section
+from stabflow.geometry._kernels import _section
 from stabflow.config import Ship, load_ship
 from stabflow.dynamics import coefficients, simulate
 from stabflow.dynamics._kernels import _section_tab

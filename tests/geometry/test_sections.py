@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from stabflow.hydrostatics._kernels import _clip_half, _section
+from stabflow.geometry._kernels import _clip_half, _section
 from stabflow.config import load_ship
 from stabflow.geometry import build_hull
 from stabflow.geometry.sections import apply_topside, bonjean, loop_contour, simplify

@@ -5,6 +5,7 @@ import pytest
 from scipy import integrate
 
 from stabflow.config import load_pipeline, load_ship
+from stabflow.hydrostatics.statics import Particulars
 from stabflow.stability_in_waves.early_stage import assess, critical_gm, heel_of_gz_max, joint_pdf, time_below, wave_statistics, weights
 from stabflow.geometry import Sections, build_hull
 from stabflow.hydrostatics.statics import compute_statics, gz_curve
@@ -60,7 +61,7 @@ def test_tumblehome_vs_flare():
         ship = load_ship(SHIPS / f"{name}.yaml")
         hull = build_hull(ship)
         st = compute_statics(ship, hull)
-        m = assess(Sections(hull), *(float(st[k]) for k in ("volume", "lcg", "kg", "km", "lwl", "bwl")), states, cfg)
+        m = assess(Sections(hull), Particulars.from_statics(st), states, cfg)
         out[name] = (st, m)
     (sf, mf), (sth, mth) = out["dtmb5415_flare"], out["dtmb5415_tumblehome"]
     assert float(sf.volume) == pytest.approx(float(sth.volume))  # same underwater hull

@@ -6,8 +6,8 @@ import pytest
 import xarray as xr
 
 from stabflow.config import load_pipeline, load_ship
-from stabflow.statistics.ensemble import (build_model, crossings, decorrelation_time, envelope, merge, run_shard,
-                               simulate_record)
+from stabflow.statistics.ensemble import build_model, merge, run_shard, simulate_record
+from stabflow.statistics.signals import crossings
 
 from ..conftest import ROOT, SHIPS
 
@@ -80,30 +80,3 @@ def test_record_regenerates_and_restarts_bit_identically(model):
     n0 = 300
     again, last2 = simulate_record(model, 4, s_start=out[n0], n_start=n0)
     np.testing.assert_array_equal(again[n0: last2 + 1], out[n0: last + 1])
-
-
-def test_crossing_of_a_sinusoid_is_exact():
-    """x = A sin(w t): up-crossing of level c at t* = asin(c / A) / w with rate A w cos(w t*); linear
-    interpolation on a fine grid recovers both to O(dt^2)."""
-    A, w, c = 10.0, 0.5, 5.0
-    t = np.arange(0, 40.0, 0.001)
-    tc, rc, n = crossings(t, A * np.sin(w * t), A * w * np.cos(w * t), c)
-    ts = np.arcsin(c / A) / w
-    assert tc[0] == pytest.approx(ts, abs=1e-7)
-    assert rc[0] == pytest.approx(A * w * np.cos(w * ts), rel=1e-6)
-    assert len(tc) == 4 and np.diff(tc) == pytest.approx(2 * np.pi / w, abs=1e-7)
-
-
-def test_envelope_of_sinusoid_is_its_amplitude():
-    """100 whole periods: the Hilbert envelope is the amplitude to round-off."""
-    t = np.arange(0, 2000.0, 0.5)
-    x = 7.0 * np.cos(2 * np.pi / 20.0 * t + 0.3)
-    assert np.max(np.abs(envelope(x) - 7.0)) < 1e-9
-
-
-def test_decorrelation_time_of_damped_cosine():
-    """acf = exp(-a t) cos(w t): envelope exp(-a t) falls below 0.05 at ln(20) / a."""
-    lag = np.arange(0, 300.0, 0.5)
-    a = 0.05
-    acf = xr.DataArray(np.exp(-a * lag) * np.cos(0.5 * lag), coords={"lag": lag}, dims="lag")
-    assert decorrelation_time(acf) == pytest.approx(np.log(20) / a, abs=1.5)

@@ -20,7 +20,8 @@ import numpy as np
 from numba import njit, prange
 
 from stabflow.geometry.frames import _rotate
-from stabflow.hydrostatics._kernels import _section
+from stabflow.geometry._kernels import _section
+from stabflow.hydrostatics._kernels import _station_sections
 
 
 @njit(cache=True)
@@ -137,15 +138,17 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
             x = min(max(ey * ict, -1.0), 1.0)
             work[i, 0] = phi - _atan_poly(x)
             work[i, 1] = (wave[i, 0] + st * xs[i] - h) / math.sqrt(ct * ct + ey * ey)
-    for i in range(nst):
-        if use_tab:
+    if use_tab:
+        for i in range(nst):
             A, Sy, Sz = _section_tab(tab, lim, i, work[i, 0], work[i, 1])
-        else:
-            ey = sb * wave[i, 1]
-            A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp - ey * cp, ct * cp + ey * sp, wave[i, 0] + st * xs[i] - h)
-        work[i, 2] = A
-        work[i, 3] = Sy
-        work[i, 4] = Sz
+            work[i, 2] = A
+            work[i, 3] = Sy
+            work[i, 4] = Sz
+    else:
+        # exact clipping: the station walk of the hydrostatics, with the lateral slope of the wave
+        for i in range(nst):
+            work[i, 0] = sb * wave[i, 1]
+        _station_sections(xs, ys, zs, npts, ct, st, cp, sp, h, wave[:, 0], work[:, 0], work[:, 2:])
     for i in range(nst):
         # dry sections add zeros
         S = wave[i, 1]

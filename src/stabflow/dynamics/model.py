@@ -27,8 +27,9 @@ from stabflow.dynamics.tables import SectionTables, kernel_args
 
 @dataclass(frozen=True)
 class Coefficients:
-    """Rigid-body and wave-body coefficients [SI]: masses [kg], inertias [kg m^2], damping
-    [N s/m, N m s/rad, N m s^2/rad^2], and the stiffnesses used to scale them."""
+    """Rigid-body and wave-body coefficients [SI]: masses [kg], inertias about G [kg m^2], damping
+    [N s/m, N m s/rad, N m s^2/rad^2], and the stiffnesses used to scale them. ``i66`` (yaw) is
+    kept for 6-DOF use; the 3-DOF model does not use it."""
 
     mass: float
     a33: float
@@ -43,6 +44,7 @@ class Coefficients:
     c33: float
     c44: float
     c55: float
+    i66: float
 
     def natural_period(self, mode: str) -> float:
         """Undamped natural period [s] of 'heave', 'roll' or 'pitch'."""
@@ -61,48 +63,83 @@ def stiffness(sec: Sections, rho, xg, zg, h0, th0) -> tuple[float, float, float]
 
 
 def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | None = None) -> Coefficients:
-    """Coefficients from the ship's ``dynamics`` config (radii of gyration, added-mass fractions,
-    damping as fractions of critical at each mode's natural frequency), or, with ``hydro`` (the
-    Capytaine dataset of ``dynamics.hydro``), added mass and radiation damping at the natural
-    frequencies plus the configured viscous roll damping."""
+    """Coefficients from the ship's ``dynamics`` config, or, with ``hydro`` (the Capytaine dataset
+    of ``dynamics.hydro``), added mass and radiation damping at the natural frequencies plus the
+    configured viscous roll damping.
+
+    Each quantity is the absolute SI value when the config gives it (``i44`` [kg m^2], ``a33``
+    [kg], ``b44`` [N m s/rad], ``b44q`` [N m s^2/rad^2], ...), else its fractional form (radius of
+    gyration, ratio to the rigid-body value, fraction of critical damping at the mode's natural
+    frequency, B44q / (I44 + A44)) with the schema's documented default when neither is given:
+    kxx 0.40 B_wl, kyy = kzz 0.25 L_wl, A33/m 1.0, A44/I44 0.2, A55/I55 1.0, zeta 0.2 (heave,
+    pitch) and 0.05 (roll), B44q/(I44+A44) 0.
+
+    Raises
+    ------
+    StabflowError
+        ``"<ship file>: dynamics.<a> and dynamics.<b>: give one, not both"`` when both forms of a
+        quantity are given (the schema rejects this at load; overrides through
+        :meth:`Ship.modified` are checked here).
+    """
+    from stabflow import StabflowError
+
     d = ship.data.get("dynamics", {})
+    # each quantity: (absolute SI key, fractional key), as in the ship schema; at most one of each
+    pairs = (("i44", "roll_gyradius"), ("i55", "pitch_gyradius"), ("i66", "yaw_gyradius"),
+             ("a33", "added_mass_heave"), ("a44", "added_inertia_roll"), ("a55", "added_inertia_pitch"),
+             ("b33", "damping_heave"), ("b44", "roll_damping_linear"), ("b55", "damping_pitch"),
+             ("b44q", "roll_damping_quadratic"))
+    for a, b in pairs:
+        if a in d and b in d:
+            raise StabflowError(f"{ship.path}: dynamics.{a} and dynamics.{b}: give one, not both")
     rho = ship.rho
     mass = float(st["mass"])
     L = float(st["lwl"])
     B = float(st["bwl"])
-    kxx = d.get("roll_gyradius", 0.40 * B)
-    kyy = d.get("pitch_gyradius", 0.25 * L)
-    i44, i55 = mass * kxx**2, mass * kyy**2
-    a33 = d.get("added_mass_heave", 1.0) * mass
-    a44 = d.get("added_inertia_roll", 0.2) * i44
-    a55 = d.get("added_inertia_pitch", 1.0) * i55
+
+    def inertia(key, gyradius, default_k):
+        return float(d[key]) if key in d else mass * d.get(gyradius, default_k) ** 2
+
+    i44 = inertia("i44", "roll_gyradius", 0.40 * B)
+    i55 = inertia("i55", "pitch_gyradius", 0.25 * L)
+    i66 = inertia("i66", "yaw_gyradius", 0.25 * L)
+    a33 = float(d["a33"]) if "a33" in d else d.get("added_mass_heave", 1.0) * mass
+    a44 = float(d["a44"]) if "a44" in d else d.get("added_inertia_roll", 0.2) * i44
+    a55 = float(d["a55"]) if "a55" in d else d.get("added_inertia_pitch", 1.0) * i55
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
     c33, c44, c55 = stiffness(sec, rho, float(st["lcg"]), float(st["kg"]), h0, th0)
 
     def crit(m, c, zeta):
         return 2 * zeta * np.sqrt(max(m * c, 0.0))
 
+    def damping(key, fraction, default, m, c):
+        """Absolute ``key`` [SI] if given, else ``fraction`` of critical for total inertia m."""
+        return float(d[key]) if key in d else crit(m, c, d.get(fraction, default))
+
+    def quadratic(m44):
+        return float(d["b44q"]) if "b44q" in d else d.get("roll_damping_quadratic", 0.0) * m44
+
     if hydro is not None:
-        bv = crit(i44 + float(hydro["added_roll"]), c44, d.get("roll_damping_linear", 0.05))
+        a44h = float(hydro["added_roll"])
+        bv = damping("b44", "roll_damping_linear", 0.05, i44 + a44h, c44)  # viscous part
         return Coefficients(
-            mass=mass, a33=float(hydro["added_heave"]), i44=i44, a44=float(hydro["added_roll"]), i55=i55,
+            mass=mass, a33=float(hydro["added_heave"]), i44=i44, a44=a44h, i55=i55,
             a55=float(hydro["added_pitch"]), b33=float(hydro["damping_heave"]), b44=float(hydro["damping_roll"]) + bv,
-            b44q=d.get("roll_damping_quadratic", 0.0) * (i44 + float(hydro["added_roll"])),
-            b55=float(hydro["damping_pitch"]), c33=c33, c44=c44, c55=c55,
+            b44q=quadratic(i44 + a44h), b55=float(hydro["damping_pitch"]), c33=c33, c44=c44, c55=c55, i66=i66,
         )
     return Coefficients(
         mass=mass, a33=a33, i44=i44, a44=a44, i55=i55, a55=a55,
-        b33=crit(mass + a33, c33, d.get("damping_heave", 0.2)),
-        b44=crit(i44 + a44, c44, d.get("roll_damping_linear", 0.05)),
-        b44q=d.get("roll_damping_quadratic", 0.0) * (i44 + a44),
-        b55=crit(i55 + a55, c55, d.get("damping_pitch", 0.2)),
-        c33=c33, c44=c44, c55=c55,
+        b33=damping("b33", "damping_heave", 0.2, mass + a33, c33),
+        b44=damping("b44", "roll_damping_linear", 0.05, i44 + a44, c44),
+        b44q=quadratic(i44 + a44),
+        b55=damping("b55", "damping_pitch", 0.2, i55 + a55, c55),
+        c33=c33, c44=c44, c55=c55, i66=i66,
     )
 
 
 def section_depths(sec: Sections, h0: float, th0: float) -> np.ndarray:
     """Calm-water mean depth of each section (area / waterline breadth) [m], for the d2phi/dzdt term."""
-    from stabflow.hydrostatics._kernels import _section
+    from stabflow.geometry._kernels import _section
 
     ct, st = np.cos(th0), np.sin(th0)
     out = np.zeros(len(sec.x))

@@ -11,7 +11,7 @@ import numpy as np
 import xarray as xr
 
 from stabflow import StabflowError
-from stabflow.hydrostatics._kernels import _clip_half
+from stabflow.geometry._kernels import _clip_half
 from stabflow.io import annotate
 
 

@@ -1,18 +1,10 @@
-"""Numba kernels (private): sectional volumes by half-plane clipping of Bonjean contours.
+"""Numba kernels (private): the station walk and the free-trim equilibrium on the sections.
 
-Every station is stored as its y >= 0 half contour, from the keel on the centreline up the side to
-the deck and back to the centreline (paper 000, section 3: the half section used for the Bonjean
-tables). The submerged part of a section is the section polygon clipped by the inclined waterline
-
-    a * y + b * z <= c
-
-(section-plane coordinates, body frame). For heel phi, trim theta and lateral wave slope eta_y
-(paper 000, step 3: effective heel = roll + lateral wave slope),
-a = cos(theta) sin(phi) - eta_y cos(phi), b = cos(theta) cos(phi) + eta_y sin(phi), and c is the
-local waterline height. The clipping walks the contour once, so emerged and submerged sections,
-deck-edge immersion and the inverted ship (phi up to 180 deg) are exact for the polygonal section.
-It is the same result as the seed's steps 4-6 (Bonjean interpolation up to the waterline point plus
-the triangle correction) wherever those apply, and stays valid where they do not.
+``_station_sections`` clips every station by its waterline (``stabflow.geometry._kernels``: the
+half-plane clipping of one section, paper 000 steps 2-6) for heel, trim, heave and a wave; it serves
+the calm-water statics and the wave pass here and the time-domain FK + HS loads in
+``stabflow.dynamics._kernels``. ``_hydro_state`` sums volume and centre of buoyancy, ``_equilibrium``
+and ``_gz_curve`` solve heave and trim (free trim) at each heel.
 """
 
 from __future__ import annotations
@@ -20,73 +12,25 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stabflow.geometry._kernels import _section
 
-@njit(cache=True, fastmath=False)
-def _clip_half(ys, zs, n, a, b, c):
-    """Area and first moments of {a*y + b*z <= c} ∩ (half contour closed on the centreline).
 
-    Returns (area, int y dA, int z dA) [m^2, m^3, m^3]. Shoelace sums over the Sutherland-Hodgman
-    output polygon, accumulated on the fly (no allocation).
-    """
-    area = 0.0
-    sy = 0.0
-    sz = 0.0
-    have = False
-    fy = 0.0
-    fz = 0.0
-    py = 0.0
-    pz = 0.0
-    # edge k -> k+1, the last edge (n-1 -> 0) runs down the centreline
-    y0 = ys[n - 1]
-    z0 = zs[n - 1]
-    d0 = a * y0 + b * z0 - c
-    for k in range(n):
-        y1 = ys[k]
-        z1 = zs[k]
-        d1 = a * y1 + b * z1 - c
-        for m in range(2):
-            emit = False
-            if m == 0:
-                if (d0 <= 0.0) != (d1 <= 0.0):
-                    t = d0 / (d0 - d1)
-                    ey = y0 + t * (y1 - y0)
-                    ez = z0 + t * (z1 - z0)
-                    emit = True
-            else:
-                if d1 <= 0.0:
-                    ey = y1
-                    ez = z1
-                    emit = True
-            if emit:
-                if have:
-                    cr = py * ez - ey * pz
-                    area += cr
-                    sy += (py + ey) * cr
-                    sz += (pz + ez) * cr
-                else:
-                    fy = ey
-                    fz = ez
-                    have = True
-                py = ey
-                pz = ez
-        y0 = y1
-        z0 = z1
-        d0 = d1
-    if have:
-        cr = py * fz - fy * pz
-        area += cr
-        sy += (py + fy) * cr
-        sz += (pz + fz) * cr
-    return 0.5 * area, sy / 6.0, sz / 6.0
+#: columns of the hydrostatic work array: area, int y dA, int z dA, waterline height, lateral slope
+WORK_COLUMNS = 5
 
 
 @njit(cache=True)
-def _section(ys, zs, n, a, b, c):
-    """Both halves of a symmetric section: (area, int y dA, int z dA)."""
-    a1, y1, z1 = _clip_half(ys, zs, n, a, b, c)
-    # starboard half in mirrored coordinates y' = -y: a -> -a, int y dA changes sign
-    a2, y2, z2 = _clip_half(ys, zs, n, -a, b, c)
-    return a1 + a2, y1 - y2, z1 + z2
+def _station_sections(xs, ys, zs, npts, ct, st, cp, sp, h, eta, ey, out):
+    """The station walk shared by statics, the wave pass and the time domain: clip every station by
+    its waterline a y + b z <= c, with the effective heel of roll and the lateral wave slope ey
+    (paper 000 step 3: a = cos(theta) sin(phi) - ey cos(phi), b = cos(theta) cos(phi) + ey sin(phi))
+    and c = eta + sin(theta) x - h, the waterline height over the station (step 2). ``ct, st, cp,
+    sp`` are cos/sin of trim and heel. out[i] = (area, int y dA, int z dA) of the wet section."""
+    for i in range(xs.shape[0]):
+        A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp - ey[i] * cp, ct * cp + ey[i] * sp, eta[i] + st * xs[i] - h)
+        out[i, 0] = A
+        out[i, 1] = Sy
+        out[i, 2] = Sz
 
 
 @njit(cache=True)
@@ -110,11 +54,13 @@ def _hydro_state(xs, dx, ys, zs, npts, phi, theta, h, xg, zg, work, amp=0.0, k=0
     My = 0.0
     Mz = 0.0
     for i in range(xs.shape[0]):
-        eta = amp * np.cos(k * (xs[i] * ct - xc)) if amp != 0.0 else 0.0
-        A, Sy, Sz = _section(ys[i], zs[i], npts[i], ct * sp, ct * cp, eta + st * xs[i] - h)
-        work[i, 0] = A
-        work[i, 1] = Sy
-        work[i, 2] = Sz
+        work[i, 3] = amp * np.cos(k * (xs[i] * ct - xc)) if amp != 0.0 else 0.0
+        work[i, 4] = 0.0  # no lateral slope along a long-crested wave running along the ship
+    _station_sections(xs, ys, zs, npts, ct, st, cp, sp, h, work[:, 3], work[:, 4], work)
+    for i in range(xs.shape[0]):
+        A = work[i, 0]
+        Sy = work[i, 1]
+        Sz = work[i, 2]
         V += A * dx[i]
         Mx += A * dx[i] * xs[i]
         My += Sy * dx[i]
@@ -200,7 +146,7 @@ def _gz_curve(xs, dx, ys, zs, npts, heels, vol, xg, zg, h0, th0, tol, out, amp=0
 
     ``out`` (nheel, 4) receives (gz, h, theta, iterations).
     """
-    work = np.empty((xs.shape[0], 3))
+    work = np.empty((xs.shape[0], WORK_COLUMNS))
     h = h0
     th = th0
     for j in range(heels.shape[0]):

@@ -8,12 +8,13 @@ curve check").
 from __future__ import annotations
 
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 
 from stabflow import StabflowError
-from stabflow.hydrostatics._kernels import _hydro_state, _equilibrium, _gz_curve
+from stabflow.hydrostatics._kernels import WORK_COLUMNS, _equilibrium, _gz_curve, _hydro_state
 from stabflow.config import Ship
 from stabflow.geometry import Sections
 from stabflow.io import annotate
@@ -21,12 +22,29 @@ from stabflow.io import annotate
 TOL = 1e-11
 
 
+@dataclass(frozen=True)
+class Particulars:
+    """The upright particulars that the later steps take together: displaced volume [m^3], LCG and
+    KG [m], KM [m], waterline length and breadth [m] (from the statics step's dataset)."""
+
+    volume: float
+    lcg: float
+    kg: float
+    km: float
+    lwl: float
+    bwl: float
+
+    @classmethod
+    def from_statics(cls, st: xr.Dataset) -> "Particulars":
+        return cls(*(float(st[k]) for k in ("volume", "lcg", "kg", "km", "lwl", "bwl")))
+
+
 class StabilityWarning(UserWarning):
     """Legal but noteworthy loading, e.g. negative GM (a lolling ship)."""
 
 
 def _volume_at(sec: Sections, h: float, theta: float = 0.0, phi: float = 0.0):
-    work = np.empty((len(sec.x), 3))
+    work = np.empty((len(sec.x), WORK_COLUMNS))
     V, _, _ = _hydro_state(*sec.args(), phi, theta, h, 0.0, 0.0, work)
     # body-frame centroid from the sectional sums
     A = work[:, 0] * sec.dx
@@ -68,7 +86,7 @@ def equilibrium(sec: Sections, volume: float, lcg: float, kg: float, heel: float
     """
     if guess is None:
         guess = _draft_guess(sec, volume)
-    work = np.empty((len(sec.x), 3))
+    work = np.empty((len(sec.x), WORK_COLUMNS))
     h, th, gz, it = _equilibrium(*sec.args(), heel, volume, lcg, kg, guess[0], guess[1], TOL, work)
     V, ex, _ = _hydro_state(*sec.args(), heel, th, h, lcg, kg, work)
     if abs(V - volume) > 1e-6 * volume or abs(ex) > 1e-6 * sec.length:
@@ -122,7 +140,7 @@ def gz_curve(sec: Sections, volume: float, lcg: float, kg: float, heel_deg: np.n
     out = np.empty((len(heels), 4))
     _gz_curve(*sec.args(), heels, volume, lcg, kg, h0, th0, TOL, out)
     # verify every point converged
-    work = np.empty((len(sec.x), 3))
+    work = np.empty((len(sec.x), WORK_COLUMNS))
     for k, phi in enumerate(heels):
         V, ex, _ = _hydro_state(*sec.args(), phi, out[k, 2], out[k, 1], lcg, kg, work)
         if abs(V - volume) > 1e-6 * volume or abs(ex) > 1e-5 * sec.length:

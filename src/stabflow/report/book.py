@@ -1,12 +1,16 @@
 """Build the validation report (Jupyter Book 1.x) from the NetCDF results.
 
-The pages are MyST markdown generated here from ``results/``; the book only renders them
-(``execute_notebooks: off``), so building the report never re-runs a simulation.
+The pages are MyST markdown rendered from the Jinja2 templates in ``templates/`` with the values read here
+from ``results/``; the book only renders them (``execute_notebooks: off``), so building the report never
+re-runs a simulation. The Python side collects plain values (numbers, strings, lists, dicts) and copies
+the figures; the words of the pages and every number format (the ``num`` filter, ``_fmt``) are in the
+templates, except the one-line step summaries of ``step_summary`` (counts, also shared with callers).
 """
 
 from __future__ import annotations
 
 import csv
+import functools
 import os
 import platform
 import shutil
@@ -15,6 +19,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+import jinja2
 import numpy as np
 import xarray as xr
 import yaml
@@ -30,11 +35,55 @@ def _open(path) -> xr.Dataset:
         return ds.load()
 
 
-def _fmt(v) -> str:
+def _fmt(v, spec: str | None = None) -> str:
+    """The report's number format (the templates' ``num`` filter): ``format(v, spec)`` for a format spec
+    such as ``".2f"``, ``"g"`` or ``".0%"``; without one four significant digits (exponent from 1e5) and
+    "–" for a value that is not finite."""
     v = float(v)
+    if spec is not None:
+        return format(v, spec)
     if not np.isfinite(v):
         return "–"
     return f"{v:.4g}" if abs(v) < 1e5 else f"{v:.4e}"
+
+
+def _cell(text) -> str:
+    """Text safe inside a Markdown table cell (the templates' ``cell`` filter)."""
+    return str(text).replace("|", "/").replace("\n", " ")
+
+
+@functools.cache
+def _env() -> jinja2.Environment:
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"),
+                             undefined=jinja2.StrictUndefined, keep_trailing_newline=True, trim_blocks=True,
+                             lstrip_blocks=True)
+    env.filters["num"] = _fmt
+    env.filters["cell"] = _cell
+    return env
+
+
+def _render(template: str, **context) -> str:
+    """Render one template. Every block of a page ends with a blank line; the page ends with a single
+    newline instead (and is empty when the template wrote nothing)."""
+    text = _env().get_template(template).render(**context)
+    return text.rstrip("\n") + "\n" if text.strip() else ""
+
+
+def _copy(src: Path, figdir: Path, name: str | None = None) -> str:
+    """Copy a result figure into the book; returns its file name there."""
+    name = name or src.name
+    shutil.copy(src, figdir / name)
+    return name
+
+
+def _optional_figures(results: Path, figdir: Path, pattern: str, stems: tuple[str, ...]) -> dict[str, str | None]:
+    """{stem: file name in the book, or None where ``results/pattern.format(stem)`` does not exist}; the
+    copy is named after its results path with "/" → "_"."""
+    out = {}
+    for stem in stems:
+        rel = pattern.format(stem)
+        out[stem] = _copy(results / rel, figdir, rel.replace("/", "_")) if (results / rel).exists() else None
+    return out
 
 
 def _benchmarks(results: Path) -> list[tuple[str, float]]:
@@ -48,91 +97,63 @@ def _benchmarks(results: Path) -> list[tuple[str, float]]:
 
 
 def ship_page(name: str, results: Path, figdir: Path) -> str:
-    """MyST page for one ship: body plan, particulars, GZ."""
+    """MyST page for one ship: body plan, particulars, GZ, stability in waves, regular-wave response."""
     hull = _open(results / "hull" / f"{name}.nc")
     st = _open(results / "statics" / f"{name}.nc")
-    for src in [results / "hull" / f"{name}_bodyplan.png", results / "statics" / f"{name}_gz.png"]:
-        shutil.copy(src, figdir / src.name)
-    lines = [f"# Ship: {name}", "", f"{hull.attrs.get('hull_source', '')} hull, {hull.sizes['station']} stations, "
-             f"enclosed hull volume {float(hull.hull_volume):.1f} m³.", ""]
-    lines += [
-        f":::{{figure}} figures/{name}_bodyplan.png", f":name: fig-{name}-bodyplan", "",
-        f"Body plan of {name}: the half contours of every station (aft body left, fore body right) as cut "
-        "from the hull and used for the Bonjean tables. Look for smooth, closed sections from keel to deck; "
-        "a missing or jagged section would point to a bad cut.", ":::", "",
-        "## Hydrostatic particulars (upright, free trim)", "", "| quantity | value | unit |", "|---|---:|---|",
-    ]
-    for k in PARTICULARS:
-        lines.append(f"| {st[k].attrs.get('long_name', k)} | {_fmt(st[k])} | {st[k].attrs.get('units', '')} |")
-    lines += [
-        "", "## Calm-water GZ", "",
-        f":::{{figure}} figures/{name}_gz.png", f":name: fig-{name}-gz", "",
-        f"Calm-water righting arm GZ of {name} from 0° to 180° heel with free trim (heave and trim in "
-        "equilibrium at every heel); the dotted line is GM·φ. Look for the initial slope matching GM, the "
-        "angle of maximum GZ and the angle of vanishing stability.", ":::", "",
-    ]
-    lines += waves_section(name, results, figdir)
-    lines += rao_section(name, results, figdir)
-    return "\n".join(lines)
+    figures = {"bodyplan": _copy(results / "hull" / f"{name}_bodyplan.png", figdir),
+               "gz": _copy(results / "statics" / f"{name}_gz.png", figdir)}
+    particulars = [{"label": st[k].attrs.get("long_name", k), "value": float(st[k]),
+                    "unit": st[k].attrs.get("units", "")} for k in PARTICULARS]
+    return _render("ship.md.j2", name=name, hull_source=hull.attrs.get("hull_source", ""),
+                   stations=hull.sizes["station"], hull_volume=float(hull.hull_volume), figures=figures,
+                   particulars=particulars, waves=_waves_data(name, results, figdir),
+                   raos=_rao_data(name, results, figdir))
+
+
+def _rao_data(name: str, results: Path, figdir: Path) -> list[dict]:
+    """One entry per regular-wave condition of ``name`` (figure copied)."""
+    raos = []
+    for nc in sorted((results / "rao").glob(f"{name}_*.nc")):
+        ds = _open(nc)
+        a = ds.attrs
+        if a.get("ship") != name:
+            continue
+        raos.append({"condition": a["condition"], "figure": _copy(nc.with_suffix(".png"), figdir),
+                     "capytaine": a.get("hydro") == "capytaine",
+                     **{k: float(a[k]) for k in ("heading_deg", "speed", "steepness", "heave_period", "roll_period",
+                                                  "pitch_period")}})
+    return raos
 
 
 def rao_section(name: str, results: Path, figdir: Path) -> list[str]:
-    """Regular-wave response amplitudes of the time-domain model, one figure per condition."""
-    lines = []
-    for nc in sorted((results / "rao").glob(f"{name}_*.nc")):
-        ds = _open(nc)
-        if ds.attrs.get("ship") != name:
-            continue
-        cond = ds.attrs["condition"]
-        shutil.copy(nc.with_suffix(".png"), figdir / nc.with_suffix(".png").name)
-        if not lines:
-            lines += ["## Time-domain response in regular waves (3-DOF, volume-based FK + HS)", ""]
-        lines += [
-            f":::{{figure}} figures/{nc.with_suffix('.png').name}", f":name: fig-{name}-rao-{cond}", "",
-            f"{name}, condition {cond}: steady-state first-harmonic heave / a, roll / ka and pitch / ka against "
-            f"L/λ, heading {ds.attrs['heading_deg']:g}° (0 = following), speed {ds.attrs['speed']:.2f} m/s, "
-            f"H/λ = {ds.attrs['steepness']:g}. Natural periods: heave {ds.attrs['heave_period']:.1f} s, roll "
-            f"{ds.attrs['roll_period']:.1f} s, pitch {ds.attrs['pitch_period']:.1f} s; added mass and damping from "
-            f"{'Capytaine (dashed: Capytaine linear RAOs with full FK + diffraction + radiation, zero speed)' if ds.attrs.get('hydro') == 'capytaine' else 'the ship config'}. "
-            "Look for heave/a → 1 in long waves and the roll peak where the encounter period meets the roll period; "
-            "where the dashed curves depart, the simplified hydrodynamics (no diffraction) matter.", ":::", "",
-        ]
-    return lines
+    """Regular-wave response amplitudes of the time-domain model, one figure per condition (page lines)."""
+    text = _render("ship_rao.md.j2", name=name, raos=_rao_data(name, results, figdir))
+    return text.split("\n") if text else []
+
+
+def _waves_data(name: str, results: Path, figdir: Path) -> dict | None:
+    """Wave-pass figures (copied) and the early-stage metric of one ship; None if not computed."""
+    wnc, mnc = results / "waves" / f"{name}.nc", results / "waves" / f"{name}_metric.nc"
+    if not (wnc.exists() and mnc.exists()):
+        return None
+    figures = {"gm": _copy(results / "waves" / f"{name}_gm.png", figdir),
+               "gz_waves": _copy(results / "waves" / f"{name}_gz_waves.png", figdir)}
+    w = _open(wnc)
+    m = _open(mnc)
+    columns = ("hs", "tm", "sigma_zeta", "k1", "k2", "weight_sum", "mean_tbc", "metric_c")
+    return {"figures": figures, "steepness_max": float(w.steepness.max()),
+            "crest_trough_steepness": float(w.attrs["crest_trough_steepness"]),
+            "gm_cr": float(m.gm_cr), "kg_cr": float(m.kg_cr), "roll_period": float(m.roll_period),
+            "critical_angle_deg": float(m.attrs["critical_angle_deg"]), "speed_kn": float(m.attrs["speed_kn"]),
+            "spectrum": m.attrs["spectrum"], "loading_kg": m.attrs["loading_kg"],
+            "sea_states": [{"sea_state": str(ss), **{c: float(m[c][i]) for c in columns}}
+                           for i, ss in enumerate(m.sea_state.values)]}
 
 
 def waves_section(name: str, results: Path, figdir: Path) -> list[str]:
-    """Wave-pass figures and the early-stage metric table for one ship (if computed)."""
-    wnc, mnc = results / "waves" / f"{name}.nc", results / "waves" / f"{name}_metric.nc"
-    if not (wnc.exists() and mnc.exists()):
-        return []
-    for src in [results / "waves" / f"{name}_gm.png", results / "waves" / f"{name}_gz_waves.png"]:
-        shutil.copy(src, figdir / src.name)
-    w = _open(wnc)
-    m = _open(mnc)
-    s = w.attrs["crest_trough_steepness"]
-    lines = [
-        "## Stability in waves (quasi-static wave pass)", "",
-        f":::{{figure}} figures/{name}_gm.png", f":name: fig-{name}-gm", "",
-        f"GM of {name} as a regular wave crest passes along the ship (free sinkage and trim, same displacement "
-        f"and LCB as in calm water), one line per wave length at the steepest wave of the sweep (H/λ = "
-        f"{float(w.steepness.max()):g}); dashed: calm water. Look for the drop of GM with the crest near "
-        "amidships and its rise with a trough amidships.", ":::", "",
-        f":::{{figure}} figures/{name}_gz_waves.png", f":name: fig-{name}-gzwaves", "",
-        f"GZ of {name} with the crest amidships, the trough amidships (λ = L, H/λ = {s:g}) and in calm water. "
-        "Look for the loss of righting arm on the crest and the gain in the trough.", ":::", "",
-        "## Early-stage assessment metric C (paper 002)", "",
-        f"Critical GM {float(m.gm_cr):.3f} m (calm-water GZ maximum at {m.attrs['critical_angle_deg']:g}°, not below "
-        f"the minimum), KG_cr {float(m.kg_cr):.3f} m, roll period T_φ = {float(m.roll_period):.2f} s; "
-        f"{m.attrs['speed_kn']:g} kn in following seas, {m.attrs['spectrum']} spectrum, wave pass at the "
-        f"{m.attrs['loading_kg']} KG.", "",
-        "| sea state | Hs [m] | Tm [s] | σ_ζ [m] | k1 [rad/m] | k2 [rad/m] | Σ W_ij (grid) | m(tbc) [s] | C [-] |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
-    ]
-    for i, ss in enumerate(m.sea_state.values):
-        lines.append(f"| {ss} | {_fmt(m.hs[i])} | {_fmt(m.tm[i])} | {_fmt(m.sigma_zeta[i])} | {_fmt(m.k1[i])} | "
-                     f"{_fmt(m.k2[i])} | {_fmt(m.weight_sum[i])} | {_fmt(m.mean_tbc[i])} | {_fmt(m.metric_c[i])} |")
-    lines.append("")
-    return lines
+    """Wave-pass figures and the early-stage metric table for one ship (if computed), as page lines."""
+    text = _render("ship_waves.md.j2", name=name, waves=_waves_data(name, results, figdir))
+    return text.split("\n") if text else []
 
 
 def waves_page(results: Path, figdir: Path) -> str | None:
@@ -140,106 +161,77 @@ def waves_page(results: Path, figdir: Path) -> str | None:
     csv_path = results / "waves" / "early_stage_C.csv"
     if not csv_path.exists():
         return None
-    shutil.copy(results / "waves" / "early_stage_C.png", figdir / "early_stage_C.png")
+    figure = _copy(results / "waves" / "early_stage_C.png", figdir)
     with open(csv_path) as fh:
         rec = list(csv.DictReader(fh))
     states = list(dict.fromkeys(r["sea_state"] for r in rec))
-    ships = list(dict.fromkeys(r["ship"] for r in rec))
-    lines = ["# Stability change in waves: metric C", "",
-             ":::{figure} figures/early_stage_C.png", ":name: fig-metric-c", "",
-             "Early-stage assessment metric C = m(tbc)/T_φ for every ship and sea state (paper 002, Figure 6). "
-             "Larger C means longer exposure to GM below its critical level relative to the roll period; compare "
-             "the tumblehome and flared topside variants of the same underwater hull.", ":::", "",
-             "| ship | GM_cr [m] | " + " | ".join(states) + " |", "|---|---:|" + "---:|" * len(states)]
-    for sh in ships:
+    ships = []
+    for sh in dict.fromkeys(r["ship"] for r in rec):
         rr = [r for r in rec if r["ship"] == sh]
-        lines.append(f"| {sh} | {_fmt(rr[0]['gm_cr'])} | " + " | ".join(_fmt(r["metric_c"]) for r in rr) + " |")
-    lines.append("")
-    return "\n".join(lines)
+        ships.append({"ship": sh, "gm_cr": rr[0]["gm_cr"], "metric_c": [r["metric_c"] for r in rr]})
+    return _render("waves.md.j2", figure=figure, sea_states=states, ships=ships)
 
 
-def _fig(results: Path, figdir: Path, rel: str, caption: str) -> list[str]:
-    src = results / rel
-    if not src.exists():
-        return []
-    name = rel.replace("/", "_")
-    shutil.copy(src, figdir / name)
-    return [f":::{{figure}} figures/{name}", "", caption, ":::", ""]
+def _extremes_data(results: Path, k: str, figdir: Path) -> dict | None:
+    """GPD extrapolation against brute force for condition ``k``; None if not computed."""
+    p = results / "extremes" / f"{k}.nc"
+    if not p.exists():
+        return None
+    x = _open(p)
+    first = x.isel(block=0)  # the "first sample" of the page; the others only count in ratio and coverage
+    targets = []
+    for tg in x.target.values:
+        d, d0 = x.sel(target=tg), first.sel(target=tg)
+        targets.append({"target": float(tg), "rate": float(d0.rate_estimate), "lower": float(d0.rate_lower),
+                        "upper": float(d0.rate_upper), "bruteforce": float(d0.rate_bruteforce),
+                        "median_ratio": float(d.rate_ratio.median()), "coverage": float(d.coverage)})
+    return {**{a: x.attrs[a] for a in ("envelope", "declustering", "fit", "interval")},
+            "decorrelation_time": float(x.decorrelation_time), "sample_hours": float(first.sample_hours),
+            "ensemble_hours": float(x.attrs["ensemble_hours"]), "blocks": x.sizes["block"], "targets": targets,
+            "figures": _optional_figures(results, figdir, f"extremes/{k}_{{}}.png",
+                                         ("threshold", "rate", "validation"))}
 
 
-def _figs(results: Path, figdir: Path, pattern: str, items) -> list[str]:
-    """Figure blocks for (name, caption) pairs, file ``pattern.format(name)``."""
-    return [line for name, cap in items for line in _fig(results, figdir, pattern.format(name), cap)]
+def _splittime_data(results: Path, k: str, figdir: Path) -> dict | None:
+    """Split-time capsize rate against brute force for condition ``k``; None if not computed."""
+    p = results / "splittime" / f"{k}.nc"
+    if not p.exists():
+        return None
+    st = _open(p)
+    rows = []
+    for th in st.split_threshold.values:
+        d = st.sel(split_threshold=th)
+        rows.append({"threshold": float(th), "crossings": int(d.crossings), "clusters": int(d.clusters),
+                     "probability": float(d.capsize_probability), "rate": float(d.capsize_rate_splittime),
+                     "lower": float(d.capsize_rate_lower), "upper": float(d.capsize_rate_upper),
+                     "inside": bool(int(d.inside))})
+    return {"sample_hours": float(st.sample_hours), "bruteforce_capsizes": int(st.bruteforce_capsizes),
+            "bruteforce_hours": float(st.bruteforce_hours), "bruteforce_rate": float(st.capsize_rate_bruteforce),
+            "bruteforce_lower": float(st.capsize_rate_bruteforce_lower),
+            "bruteforce_upper": float(st.capsize_rate_bruteforce_upper), "thresholds": rows,
+            "figures": _optional_figures(results, figdir, f"splittime/{k}_{{}}.png",
+                                         ("crossings", "perturbation", "metric", "rate"))}
 
 
 def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
     """Irregular seas: ensemble statistics, extreme roll (GPD vs brute force), split-time capsize rate."""
-    ens = [f"{c['ship']}_{c['name']}" for c in config.get("ensembles", [])]
-    if not ens:
-        return None
-    L = ["# Irregular seas: ensembles, extreme roll and capsizing", "",
-         "Each ensemble is many independent 30-minute records (record r from master seed and r), simulated with the "
-         "volume-based FK + hydrostatic model on tabulated sectional properties; only statistics are kept.", "",
-         "| condition | Hs [m] | Tp [s] | speed [kn] | heading [deg] | hours | roll σ [deg] | roll kurtosis | capsizes |",
-         "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for k in ens:
+    conditions = []
+    for c in config.get("ensembles", []):
+        k = f"{c['ship']}_{c['name']}"
         p = results / "ensemble" / k / "ensemble.nc"
-        if not p.exists():
-            continue
-        e = _open(p)
-        a = e.attrs
-        L.append(f"| {k} | {a['hs']:g} | {a['tp']:g} | {a['speed_kn']:g} | {a['heading_deg']:g} | "
-                 f"{float(e['exposure_hours']):.0f} | {float(e['roll_std']):.2f} | "
-                 f"{float(e['kurtosis'].sel(dof='roll')):.2f} | {int(e['capsize_count'])} |")
-    L.append("")
-    for k in ens:
-        L += [f"## {k}", ""]
-        L += _figs(results, figdir, f"ensemble/{k}/{{}}.png", (
-            ("roll_distribution", "Roll distribution normalised by σ against the normal distribution, both tails "
-                                  "(seed 000 Figs 11-13)."),
-            ("spectra", "Mean encounter spectra (Welch) of wave, heave, roll, pitch."),
-            ("time_histories", "Sample records (seed 000 Fig. 10).")))
-        px = results / "extremes" / f"{k}.nc"
-        if px.exists():
-            x = _open(px)
-            L += ["### Extreme roll: GPD extrapolation against brute force", "",
-                  f"Envelope: {x.attrs['envelope']}; declustering: {x.attrs['declustering']} "
-                  f"({float(x['decorrelation_time']):.1f} s); fit: {x.attrs['fit']}; interval: {x.attrs['interval']}. "
-                  f"Each sample is {float(x['sample_hours'][0]):.0f} h; brute force counts the rest of the "
-                  f"{x.attrs['ensemble_hours']:.0f}-h ensemble.", "",
-                  "| target [deg] | rate, first sample [1/h] | 95 % interval | brute force [1/h] | median ratio | coverage |",
-                  "|---:|---:|---|---:|---:|---:|"]
-            for tg in x["target"].values:
-                d = x.sel(target=tg)
-                L.append(f"| {tg:g} | {float(d['rate_estimate'][0]):.4g} | [{float(d['rate_lower'][0]):.3g}, "
-                         f"{float(d['rate_upper'][0]):.3g}] | {float(d['rate_bruteforce'][0]):.4g} | "
-                         f"{float(d['rate_ratio'].median()):.2f} | {float(d['coverage']):.0%} of {x.sizes['block']} |")
-            L.append("")
-            L += _figs(results, figdir, f"extremes/{k}_{{}}.png", (
-                ("threshold", "Threshold selection: mean residual life and parameter stability (pyextremes)."),
-                ("rate", "Exceedance rate from the first sample with its interval, and counted in the ensemble."),
-                ("validation", "Every independent sample's estimate and interval against the brute-force rate.")))
-        ps = results / "splittime" / f"{k}.nc"
-        if ps.exists():
-            st = _open(ps)
-            L += ["### Split-time capsize rate against brute force", "",
-                  f"Sample {float(st['sample_hours']):.0f} h; brute force {int(st['bruteforce_capsizes'])} capsizes in "
-                  f"{float(st['bruteforce_hours']):.0f} h: {float(st['capsize_rate_bruteforce']):.3g} /h "
-                  f"[{float(st['capsize_rate_bruteforce_lower']):.3g}, {float(st['capsize_rate_bruteforce_upper']):.3g}].", "",
-                  "| threshold [deg] | crossings | clusters | P(capsize / cluster) | split-time rate [1/h] | 95 % interval | brute force inside |",
-                  "|---:|---:|---:|---:|---:|---|---|"]
-            for th in st["split_threshold"].values:
-                d = st.sel(split_threshold=th)
-                L.append(f"| {th:g} | {int(d['crossings'])} | {int(d['clusters'])} | {float(d['capsize_probability']):.3g} | "
-                         f"{float(d['capsize_rate_splittime']):.3g} | [{float(d['capsize_rate_lower']):.3g}, "
-                         f"{float(d['capsize_rate_upper']):.3g}] | {'yes' if int(d['inside']) else 'no'} |")
-            L.append("")
-            L += _figs(results, figdir, f"splittime/{k}_{{}}.png", (
-                ("crossings", "Non-rare problem: threshold crossings on a sample record (paper 003 Fig. 3)."),
-                ("perturbation", "Motion perturbation at one crossing (paper 003 Fig. 4)."),
-                ("metric", "Metric tail and fitted GPD, extrapolated to y = 1."),
-                ("rate", "Capsize rate against the intermediate threshold, with the brute-force interval.")))
-    return "\n".join(L)
+        stats = None
+        if p.exists():
+            e = _open(p)
+            stats = {**{a: float(e.attrs[a]) for a in ("hs", "tp", "speed_kn", "heading_deg")},
+                     "hours": float(e.exposure_hours), "roll_std": float(e.roll_std),
+                     "roll_kurtosis": float(e.kurtosis.sel(dof="roll")), "capsizes": int(e.capsize_count)}
+        conditions.append({"key": k, "stats": stats, "extremes": _extremes_data(results, k, figdir),
+                           "splittime": _splittime_data(results, k, figdir),
+                           "figures": _optional_figures(results, figdir, f"ensemble/{k}/{{}}.png",
+                                                        ("roll_distribution", "spectra", "time_histories"))})
+    if not conditions:
+        return None
+    return _render("rare_events.md.j2", conditions=conditions)
 
 
 #: validation steps in report order: (step attribute, title, file suffix)
@@ -269,81 +261,37 @@ def validation_rows(results: Path, expected: dict[str, list[tuple[str, str]]]) -
     return out
 
 
-def step_summary(rows: list[dict]) -> str:
-    """'independent 12 / 14 pass, consistency 5 / 5 pass, 2 skipped' for one step's rows."""
-    parts = []
+def _passes(rows: list[dict]) -> dict[str, str]:
+    """{kind: 'PASS / checked pass'} for the kinds with checks that ran (SKIPPED rows left out)."""
+    out = {}
     for kind in ("independent", "consistency"):
         k = [r for r in rows if r["kind"] == kind and r["status"] != "SKIPPED"]
         if k:
-            parts.append(f"{kind} {sum(r['status'] == 'PASS' for r in k)} / {len(k)} pass")
+            out[kind] = f"{sum(r['status'] == 'PASS' for r in k)} / {len(k)} pass"
+    return out
+
+
+def step_summary(rows: list[dict]) -> str:
+    """'independent 12 / 14 pass, consistency 5 / 5 pass, 2 skipped' for one step's rows."""
+    parts = [f"{kind} {frac}" for kind, frac in _passes(rows).items()]
     skipped = sum(r["status"] == "SKIPPED" for r in rows)
     if skipped:
         parts.append(f"{skipped} skipped")
     return ", ".join(parts) or "no checks"
 
 
-def _unit(unit: str) -> str:
-    """' m' after a number, nothing for dimensionless values."""
-    return "" if unit in ("", "-", "1") else f" {unit}"
-
-
-def _cell(text: str) -> str:
-    return str(text).replace("|", "/").replace("\n", " ")
-
-
 def validation_page(results: Path, expected: dict) -> tuple[str, dict]:
     """MyST page: a summary line per step, every FAIL listed first, then one table per step.
     Returns (page, counts) with counts[step] = {PASS, FAIL, SKIPPED, summary}."""
     rows = validation_rows(results, expected)
-    counts = {}
-    page = ["# Validation", "",
-            "Every row is read from `results/validation/*.nc`, written by the pipeline's validation rules. The "
-            "measured value is a deviation from the reference (or a statistic such as a coverage) and the row "
-            "passes when it meets the criterion. **Kind**: *independent* — exact or analytic, a peer library, "
-            "published data or a different method; *consistency* — the same code path another way (a limit of the "
-            "same equations, a second route through the same kernel, self-convergence). A check that could not "
-            "run is a FAIL with the reason; a check that does not apply is SKIPPED with the reason.", ""]
-    summary = ["| step | independent | consistency | skipped | FAIL |", "|---|---|---|---:|---:|"]
-    fails = []
+    counts, steps = {}, []
     for step, title, _ in STEPS:
         r = rows[step]
-        c = {st: sum(x["status"] == st for x in r) for st in ("PASS", "FAIL", "SKIPPED")}
-        c["summary"] = step_summary(r)
-        counts[step] = c
-
-        def frac(kind):
-            k = [x for x in r if x["kind"] == kind and x["status"] != "SKIPPED"]
-            return f"{sum(x['status'] == 'PASS' for x in k)} / {len(k)} pass" if k else "–"
-
-        summary.append(f"| {{ref}}`{title} <val-{step}>` | {frac('independent')} | {frac('consistency')} | {c['SKIPPED']} | "
-                       f"{c['FAIL']} |")
-        fails += [(title, x) for x in r if x["status"] == "FAIL"]
-    page += summary + [""]
-    if fails:
-        page += ["## Failing checks", "",
-                 "These checks miss their reference; each is explained in the closing note of the session that "
-                 "measured it and stays FAIL until the method is fixed.", ""]
-        page += [f"- {x['ship']} ({t.lower()}): {_cell(x['check'])} — measured {_fmt(x['value'])}{_unit(x['unit'])}, "
-                 f"criterion {_cell(x['criterion'])}{_unit(x['unit'])}{' — ' + _cell(x['reason']) if x['reason'] else ''}"
-                 for t, x in fails]
-        page.append("")
-    for step, title, _ in STEPS:
-        r = rows[step]
-        page += [f"(val-{step})=", f"## {title}", "", f"{step_summary(r)}.", ""]
-        if not r:
-            page += ["No ship or condition of this run has this step.", ""]
-            continue
-        page += ["| ship / condition | check — *kind*, reference | measured | criterion | result |",
-                 "|---|---|---:|---|---|"]
-        for x in r:
-            res = {"PASS": "PASS", "FAIL": "**FAIL**", "SKIPPED": "SKIPPED"}[x["status"]]
-            if x["reason"]:
-                res += f" ({_cell(x['reason'])})"
-            unit = _unit(x["unit"])
-            page.append(f"| {x['ship']} | {_cell(x['check'])} — *{x['kind']}*, {_cell(x['reference'])} | "
-                        f"{_fmt(x['value'])}{unit} | {_cell(x['criterion'])}{unit} | {res} |")
-        page.append("")
-    return "\n".join(page), counts
+        counts[step] = {st: sum(x["status"] == st for x in r) for st in ("PASS", "FAIL", "SKIPPED")}
+        counts[step]["summary"] = step_summary(r)
+        steps.append({"key": step, "title": title, "rows": r, "counts": counts[step], "passes": _passes(r)})
+    fails = [(s["title"], x) for s in steps for x in s["rows"] if x["status"] == "FAIL"]
+    return _render("validation.md.j2", steps=steps, fails=fails), counts
 
 
 def overview_page(results: Path, ships: list[str], config: dict, counts: dict) -> str:
@@ -352,28 +300,10 @@ def overview_page(results: Path, ships: list[str], config: dict, counts: dict) -
 
     versions = {"stabflow": __version__, "python": platform.python_version(), "numpy": np.__version__,
                 "scipy": scipy.__version__, "numba": numba.__version__, "xarray": xr.__version__}
-    lines = ["# stabflow validation report", "",
-             "Ship stability from hull geometry to calm-water GZ, stability in waves (wave-pass GM/GZ and the "
-             "early-stage metric C, paper 002) and 3-DOF time-domain response in regular waves, all computed "
-             "with the sectional (Bonjean) machinery of the volume-based Froude-Krylov and hydrostatic method "
-             "(paper 000).", "",
-             "## Validation at a glance", "",
-             f"**{sum(c['PASS'] for c in counts.values())} PASS, {sum(c['FAIL'] for c in counts.values())} FAIL, "
-             f"{sum(c['SKIPPED'] for c in counts.values())} SKIPPED** — details and every failing check on the "
-             "[validation page](validation.md).", ""]
-    for step, title, _ in STEPS:
-        c = counts[step]
-        lines.append(f"- {title}: {c['summary']}" + (f" — **{c['FAIL']} FAIL**" if c["FAIL"] else "") + ".")
-    lines += ["", "## What was run", "", f"Ships: {', '.join(ships)}.", "", "Pipeline configuration:", "", "```yaml",
-              yaml.safe_dump(_plain(config), sort_keys=False, default_flow_style=None, width=110).rstrip()]
-    lines += ["```", "", "## Software", "", "| package | version |", "|---|---|"]
-    lines += [f"| {k} | {v} |" for k, v in versions.items()]
-    bench = _benchmarks(results)
-    if bench:
-        lines += ["", "## Run time per job (Snakemake benchmark files)", "", "| job | wall time [s] |", "|---|---:|"]
-        lines += [f"| {k} | {v:.2f} |" for k, v in bench]
-    lines.append("")
-    return "\n".join(lines)
+    return _render("index.md.j2", counts=counts, steps=[{"key": step, "title": title} for step, title, _ in STEPS],
+                   ships=ships, versions=list(versions.items()), benchmarks=_benchmarks(results),
+                   config_yaml=yaml.safe_dump(_plain(config), sort_keys=False, default_flow_style=None,
+                                              width=110).rstrip())
 
 
 def _plain(obj):
@@ -409,20 +339,13 @@ def build_report(results: str | Path, ships: list[str], config: dict, source: st
         val, counts = validation_page(results, expected_validation(ships, config))
         (book / "validation.md").write_text(val)
         (book / "index.md").write_text(overview_page(results, ships, config, counts))
-        for s in ships:
-            (book / f"ship_{s}.md").write_text(ship_page(s, results, figdir))
-        toc = ["format: jb-book", "root: index", "parts:", "  - caption: Results", "    chapters:"]
-        toc += [f"      - file: ship_{s}" for s in ships]
-        wp = waves_page(results, figdir)
-        if wp:
-            (book / "waves.md").write_text(wp)
-            toc.append("      - file: waves")
-        rp = rare_events_page(results, config, figdir)
-        if rp:
-            (book / "rare_events.md").write_text(rp)
-            toc.append("      - file: rare_events")
-        toc += ["  - caption: Validation and methods", "    chapters:", "      - file: validation", "      - file: methods"]
-        (book / "_toc.yml").write_text("\n".join(toc) + "\n")
+        chapters = {f"ship_{s}": ship_page(s, results, figdir) for s in ships}
+        chapters["waves"] = waves_page(results, figdir)
+        chapters["rare_events"] = rare_events_page(results, config, figdir)
+        chapters = {stem: page for stem, page in chapters.items() if page}
+        for stem, page in chapters.items():
+            (book / f"{stem}.md").write_text(page)
+        (book / "_toc.yml").write_text(_render("_toc.yml.j2", chapters=list(chapters)))
         env = dict(os.environ, PYTHONHASHSEED="0")
         r = subprocess.run([sys.executable, "-c", "from jupyter_book.cli.main import main; main()", "build", str(book), "--builder", "html"],
                            capture_output=True, text=True, env=env)

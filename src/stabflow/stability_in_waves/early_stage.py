@@ -14,7 +14,7 @@ import xarray as xr
 from stabflow.geometry import Sections
 from stabflow.io import annotate
 from stabflow.constants import KNOT, G
-from stabflow.hydrostatics.statics import gz_curve
+from stabflow.hydrostatics.statics import Particulars, gz_curve
 from stabflow.waves.spectra import cutoff_frequencies, spectral_moments, spectrum
 from stabflow.stability_in_waves.wave_pass import wave_gm
 
@@ -115,8 +115,9 @@ def time_below(gm_samples: np.ndarray, level: float, wavelength: float, rel_spee
     return frac / n * wavelength / rel_speed
 
 
-def assess(sec: Sections, volume, lcg, kg, km, lwl, bwl, sea_states, cfg) -> xr.Dataset:
-    """Metric C for every sea state in ``sea_states`` (list of dicts name, hs, tm).
+def assess(sec: Sections, ship: Particulars, sea_states, cfg) -> xr.Dataset:
+    """Metric C for every sea state in ``sea_states`` (list of dicts name, hs, tm) for the ship's
+    upright particulars ``ship``.
 
     ``cfg["loading_kg"]``: "critical" (the paper's Table 1: "the values of KG for all the ships
     were set for critical angle of the maximum of 30 degrees", so calm-water GM = GM_cr and every
@@ -126,6 +127,7 @@ def assess(sec: Sections, volume, lcg, kg, km, lwl, bwl, sea_states, cfg) -> xr.
     min_wavelength_ratio, amplitude_max_sigma, breaking_steepness, crest_positions, spectrum,
     min_relative_speed.
     """
+    volume, lcg, kg, km, lwl, bwl = ship.volume, ship.lcg, ship.kg, ship.km, ship.lwl, ship.bwl
     gm_cr, kg_cr = critical_gm(sec, volume, lcg, km, cfg["critical_angle"], cfg["gm_min"])
     t_phi = 0.8 * bwl / np.sqrt(gm_cr)
     kg_pass = kg_cr if cfg["loading_kg"] == "critical" else kg

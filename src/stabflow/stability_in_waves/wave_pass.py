@@ -14,7 +14,7 @@ import numpy as np
 import xarray as xr
 
 from stabflow import StabflowError
-from stabflow.hydrostatics._kernels import _equilibrium, _gz_curve, _hydro_state
+from stabflow.hydrostatics._kernels import WORK_COLUMNS, _equilibrium, _gz_curve, _hydro_state
 from stabflow.geometry import Sections
 from stabflow.io import annotate
 from stabflow.hydrostatics.statics import TOL, StabilityWarning
@@ -26,7 +26,7 @@ def wave_equilibrium(sec: Sections, volume, lcg, kg, amp, k, xc, guess=(None, No
     Newton from ``guess`` (or the calm-water draft); if that stalls (very steep or long waves
     need large trims), continuation in wave amplitude from calm water in steps of 1/8.
     """
-    work = np.empty((len(sec.x), 3))
+    work = np.empty((len(sec.x), WORK_COLUMNS))
 
     def solve(a, h0, th0):
         h, th, _, _ = _equilibrium(*sec.args(), heel, volume, lcg, kg, h0, th0, TOL, work, a, k, xc)
@@ -52,7 +52,7 @@ def wave_equilibrium(sec: Sections, volume, lcg, kg, amp, k, xc, guess=(None, No
 def wave_gm(sec: Sections, volume, lcg, kg, amp, k, xc, guess=(None, None)):
     """GM(x_c), KB(x_c), BM(x_c) [m] on the wave (paper 002 eqs A22-A24), and (h, theta)."""
     h, th = wave_equilibrium(sec, volume, lcg, kg, amp, k, xc, guess)
-    work = np.empty((len(sec.x), 3))
+    work = np.empty((len(sec.x), WORK_COLUMNS))
     V, _, _ = _hydro_state(*sec.args(), 0.0, th, h, lcg, kg, work, amp, k, xc)
     ct, st = np.cos(th), np.sin(th)
     kb = float((work[:, 2] * sec.dx).sum() / V)

@@ -20,7 +20,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
-from scipy.signal import hilbert
 
 from stabflow.config import Ship
 from stabflow.dynamics import coefficients
@@ -30,6 +29,8 @@ from stabflow.dynamics.tables import SectionTables, kernel_args, section_tables
 from stabflow.constants import KNOT
 from stabflow.geometry import Sections, build_hull
 from stabflow.io import annotate
+from stabflow.statistics.signals import (SPECTRUM_SEGMENT, crossings, decorrelation_time, envelope, local_peaks,
+                                         quantile_from_histogram, welch_psd)
 from stabflow.hydrostatics.statics import compute_statics, equilibrium
 from stabflow.waves.seaway import Seaway
 from stabflow.waves.synthesis import station_wave_table
@@ -37,7 +38,6 @@ from stabflow.waves.synthesis import station_wave_table
 DOFS = ("heave", "roll", "pitch")
 SERIES = ("wave",) + DOFS  # spectra: wave elevation at midships and the three motions
 BATCH = 16  # records per parallel batch
-SPECTRUM_SEGMENT = 512  # Welch segment length [samples]
 
 
 @dataclass
@@ -111,29 +111,7 @@ def simulate_record(model: Model, record: int, s_start=None, n_start: int = 0, n
     return out, last
 
 
-def crossings(t, x, xdot, level: float, up: bool = True):
-    """Times, rates and step indices where ``x`` crosses ``level`` upwards (or downwards), with
-    linear interpolation of time and rate between the samples either side."""
-    a, b = x[:-1], x[1:]
-    n = np.nonzero((a < level) & (b >= level))[0] if up else np.nonzero((a > level) & (b <= level))[0]
-    f = (level - a[n]) / (b[n] - a[n])
-    return t[n] + f * (t[n + 1] - t[n]), xdot[n] + f * (xdot[n + 1] - xdot[n]), n
 
-
-def local_peaks(t, x, floor: float):
-    """Local maxima of ``x`` above ``floor``, refined by the parabola through the three samples."""
-    m = np.nonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:]) & (x[1:-1] > floor))[0] + 1
-    y0, y1, y2 = x[m - 1], x[m], x[m + 1]
-    den = y0 - 2 * y1 + y2
-    with np.errstate(invalid="ignore", divide="ignore"):
-        d = np.where(den != 0, 0.5 * (y0 - y2) / den, 0.0)
-    dt = t[1] - t[0] if len(t) > 1 else 0.0
-    return t[m] + d * dt, y1 - 0.25 * (y0 - y2) * d
-
-
-def envelope(x):
-    """Amplitude envelope |x + i H[x]| (Hilbert transform, scipy.signal.hilbert) of a zero-mean record."""
-    return np.abs(hilbert(x - x.mean())) if len(x) > 1 else np.abs(x)
 
 
 def bins(cond: dict) -> dict[str, np.ndarray]:
@@ -186,18 +164,6 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     out["psd"] = welch_psd(np.array([wave_mid[:n], h, roll, pitch]), model.dt) if n >= SPECTRUM_SEGMENT else None
     return out
 
-
-def welch_psd(x: np.ndarray, dt: float, nseg: int = SPECTRUM_SEGMENT) -> np.ndarray:
-    """One-sided Welch spectra per rad/s of the rows of ``x`` (Hann window, 50 % overlap, mean
-    removed per segment): the same estimate as scipy.signal.welch, vectorised over rows."""
-    step = nseg // 2
-    starts = np.arange(0, x.shape[1] - nseg + 1, step)
-    win = np.hanning(nseg + 1)[:-1]  # periodic Hann, as scipy's default
-    seg = np.stack([x[:, s: s + nseg] for s in starts], axis=1)
-    seg = (seg - seg.mean(axis=-1, keepdims=True)) * win
-    p = np.abs(np.fft.rfft(seg, axis=-1)) ** 2 / (np.sum(win**2) / dt)
-    p[..., 1:-1] *= 2.0
-    return p.mean(axis=1) / (2 * np.pi)
 
 
 def _events(rows, rec, width):
@@ -347,22 +313,3 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     out.attrs.update(shards[0].attrs)
     out.attrs["n_records"] = int(out.sizes["record"])
     return annotate(out)
-
-
-def quantile_from_histogram(hist: np.ndarray, centres: np.ndarray, q: float) -> float:
-    """Quantile of a fixed-bin histogram by linear interpolation of its CDF."""
-    w = centres[1] - centres[0]
-    edges = np.concatenate([centres - 0.5 * w, [centres[-1] + 0.5 * w]])
-    cdf = np.concatenate([[0.0], np.cumsum(hist)]) / max(hist.sum(), 1)
-    return float(np.interp(q, cdf, edges))
-
-
-def decorrelation_time(acf: xr.DataArray, level: float = 0.05) -> float:
-    """Time after which the envelope of the autocorrelation stays below ``level`` (paper 003,
-    section 5): the envelope is |acf + i H[acf]|; returns the first lag beyond its last exceedance."""
-    a = np.nan_to_num(acf.values)
-    env = np.abs(hilbert(np.concatenate([a[::-1][:-1], a])))[len(a) - 1:]
-    above = np.nonzero(env >= level)[0]
-    lag = acf["lag"].values
-    k = min(above[-1] + 1, len(lag) - 1) if len(above) else 0
-    return float(lag[k])

@@ -4,7 +4,7 @@ The ensemble step stores, for every record, the peaks of the roll envelope |phi 
 (Hilbert transform, ``ensemble.envelope``) above a floor, with their times. This step:
 
 1. Decorrelation time tau: the lag after which the envelope of the ensemble roll autocorrelation
-   stays below 0.05 (paper 003, section 5; ``ensemble.decorrelation_time``).
+   stays below 0.05 (paper 003, section 5; ``signals.decorrelation_time``).
 2. Time axis for pyextremes: records are independent, so they are *not* joined into one continuous
    series. Record r, time t maps to ``EPOCH + r (T_rec + gap) + t`` with a gap of 2 tau + 60 s
    between records: pyextremes' declustering window (r = tau) can never join peaks of two records,
@@ -30,7 +30,7 @@ import pandas as pd
 import xarray as xr
 from scipy import stats
 
-from stabflow.statistics.ensemble import decorrelation_time
+from stabflow.statistics.signals import decorrelation_time
 from stabflow.io import annotate
 
 EPOCH = pd.Timestamp("2000-01-01")

@@ -36,9 +36,10 @@ from scipy import stats
 
 from stabflow.dynamics._kernels import _simulate
 from stabflow.dynamics.tables import kernel_args
-from stabflow.statistics.ensemble import Model, decorrelation_time, simulate_record, wave_table
+from stabflow.statistics.ensemble import Model, simulate_record, wave_table
 from stabflow.statistics.extremes import decluster, gpd_mle
 from stabflow.io import annotate
+from stabflow.statistics.signals import decorrelation_time
 
 
 def bisect_critical(capsizes, dmax: float, tol: float) -> tuple[float, int]:

@@ -95,6 +95,7 @@ from stabflow.geometry import Sections
 from stabflow.constants import G
 from stabflow.hydrostatics.statics import equilibrium
 from stabflow.waves.synthesis import regular, station_wave_table
+from stabflow.statistics.signals import local_peaks
 from stabflow.validation import Check, run_check
 
 CALM = (np.array([]), np.array([]), np.array([]))
@@ -140,13 +141,8 @@ class NotApplicable(Exception):
 
 
 def peaks(t: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Times and values of the local maxima of ``x(t)``, refined by a parabola through each peak
-    sample and its two neighbours (equally spaced ``t``)."""
-    i = np.flatnonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:])) + 1
-    a, b, c = x[i - 1], x[i], x[i + 1]
-    d = a - 2 * b + c
-    off = np.where(d != 0, 0.5 * (a - c) / np.where(d != 0, d, 1.0), 0.0)
-    return t[i] + off * (t[1] - t[0]), b - 0.25 * (a - c) * off
+    """Times and values of the local maxima of ``x(t)``, parabola-refined (equally spaced ``t``)."""
+    return local_peaks(t, x, -np.inf)
 
 
 def roll_decay(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, phi0_deg: float = DECAY_HEEL,

@@ -55,7 +55,8 @@ import numpy as np
 import xarray as xr
 from scipy import signal, stats
 
-from stabflow.statistics.ensemble import merge, quantile_from_histogram, run_shard
+from stabflow.statistics.ensemble import merge, run_shard
+from stabflow.statistics.signals import quantile_from_histogram
 from stabflow.waves.synthesis import station_wave_table
 from stabflow.validation import Check, run_check
 
@@ -385,19 +386,11 @@ def extremes_checks(extremes: xr.Dataset | None) -> list[Check]:
 
 
 def splittime_checks(splittime: xr.Dataset | None) -> list[Check]:
-    """Per threshold: brute-force rate inside the split-time interval, and split-time / brute-force rate.
-
-    Parameters
-    ----------
-    splittime : xarray.Dataset or None
-        Dataset of ``stabflow.statistics.splittime.analyse``; ``None`` when the step does not run.
-
-    Returns
-    -------
-    list of Check
-        Two independent rows per threshold (inside: 1 or 0, band [1, 1]; ratio in ``RATIO_BAND``);
-        FAIL with the reason when the brute force counted no capsize or a value is NaN; two SKIPPED
-        rows for ``None``.
+    """Two independent rows per threshold of the split-time dataset ``splittime`` (the result of
+    ``stabflow.statistics.splittime.analyse``, or ``None`` when the step does not run for this
+    condition, which gives two SKIPPED rows): the brute-force rate inside the split-time interval
+    (1 or 0, band [1, 1]) and split-time / brute-force rate in ``RATIO_BAND``. A brute force that
+    counted no capsize, or a NaN value, gives FAIL rows with the reason.
     """
     lo, hi = RATIO_BAND
     in_name = "split-time: brute-force capsize rate inside the {pct} interval (1 yes, 0 no)"
