@@ -8,7 +8,7 @@ from stabflow.config import load_pipeline, load_ship
 from .conftest import ROOT, SHIPS
 
 
-@pytest.mark.parametrize("name", ["barge", "wigley", "dtmb5415", "dtc"])
+@pytest.mark.parametrize("name", ["barge", "wigley", "dtmb5415", "dtc", "trawler"])
 def test_shipped_configs_valid(name):
     ship = load_ship(SHIPS / f"{name}.yaml")
     assert ship.name == name
@@ -107,3 +107,11 @@ def test_hull_frame_checked_after_transform(ship_file, transform, what):
         build_hull(load_ship(p))
     msg = str(e.value)
     assert msg.startswith(f"{p}: hull.transform: ") and what in msg and "hull spans" in msg and "\n" not in msg
+
+
+def test_absolute_and_fraction_together_is_one_clear_error(ship_file):
+    """An absolute coefficient and its fraction for the same mode: one line naming both fields."""
+    p = ship_file("barge", dynamics={"b44": 1.0e6, "roll_damping_linear": 0.05})
+    with pytest.raises(StabflowError) as e:
+        load_ship(p)
+    assert str(e.value) == f"{p}: dynamics.b44 and dynamics.roll_damping_linear: give one, not both"

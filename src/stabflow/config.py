@@ -87,7 +87,11 @@ def validate(data: Any, name: str, source: str | Path) -> dict:
         err = errors[0]
         field = ".".join(str(p) for p in err.absolute_path) or "(top level)"
         msg = err.message
-        if err.validator == "oneOf":
+        if err.validator == "not" and list(err.validator_value) == ["required"]:
+            # an absolute value and its fraction given together (ship schema, dynamics)
+            field = " and ".join(f"{field}.{k}" for k in err.validator_value["required"])
+            msg = "give one, not both"
+        elif err.validator == "oneOf":
             msg = "give exactly one of " + " / ".join(
                 "+".join(s.get("required", [])) for s in err.validator_value
             )

@@ -211,10 +211,15 @@ def atomic_path(path: str | Path, suffix: str = ".tmp"):
 def write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename).
 
-    No history/date attributes are written, so the same inputs give bit-identical files.
+    No history/date attributes are written, so the same inputs give bit-identical files. No
+    dimension is declared unlimited: xarray keeps declared unlimited dimensions (also the ones it
+    carries in ``encoding`` from files it read) in a set, which orders them by Python's per-process
+    string hash, so the file bytes would change from run to run. Dimensions are then created in the
+    order the variables use them (a dimension of length 0, e.g. an ensemble without threshold
+    crossings, still becomes an unlimited one in the file, as netCDF requires).
     """
     with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", unlimited_dims=[])
     return Path(path)
 
 

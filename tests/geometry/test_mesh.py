@@ -84,3 +84,21 @@ def test_mesh_gz_reference_finds_its_own_equilibrium():
     assert np.abs(mesh_gz(m, 12000.0, 0.0, 7.0, heels) - ref).max() < 1e-6
     with pytest.raises(ValueError):
         mesh_gz(m, 30000.0, 0.0, 7.0, [10.0])  # more than the hull's 24000 m3: no bracket
+
+
+def test_inward_normals_are_reversed_with_a_warning(tmp_path):
+    """A closed mesh stored with inward normals (negative enclosed volume, as the trawler STL) is
+    turned outward with a warning, so surface integrals (mesh GZ, pressure, Capytaine) are right."""
+    import pytest
+    import trimesh
+
+    from stabflow.geometry.mesh import load_mesh
+
+    m = trimesh.creation.box(extents=[10, 4, 2])
+    m.invert()
+    assert m.volume < 0
+    path = tmp_path / "inward.stl"
+    m.export(path)
+    with pytest.warns(UserWarning, match="normals point inward"):
+        out = load_mesh(path)
+    assert out.volume == pytest.approx(80.0)

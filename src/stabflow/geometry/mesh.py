@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import gzip
 import io
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -41,7 +42,15 @@ def load_mesh(path: str | Path, scale: float = 1.0, flip_z: bool = False, transl
     if flip_z:
         v[:, 1:] *= -1.0
     v = v * scale + np.asarray(translate, dtype=np.float64)
-    return trimesh.Trimesh(vertices=v, faces=mesh.faces, process=False)
+    out = trimesh.Trimesh(vertices=v, faces=mesh.faces, process=False)
+    # normals pointing into the hull give a negative enclosed volume: the references that integrate
+    # over the surface (mesh GZ, pressure integration, Capytaine) need them outward (the stations
+    # are cut from the surface and do not depend on it)
+    if out.volume < 0:
+        warnings.warn(f"{path}: mesh normals point inward (enclosed volume {out.volume:.4g} m3): faces reversed",
+                      stacklevel=2)
+        out.invert()
+    return out
 
 
 def cut_segments(mesh: trimesh.Trimesh, x: float) -> np.ndarray:
