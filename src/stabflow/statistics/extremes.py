@@ -32,6 +32,7 @@ from scipy import stats
 
 from stabflow.statistics.signals import decorrelation_time
 from stabflow.io import annotate
+from stabflow.statistics.intervals import record_bootstrap
 
 EPOCH = pd.Timestamp("2000-01-01")
 
@@ -140,10 +141,7 @@ def estimate(maxima, recs, block_records, u, hours, xs, n_boot: int, alpha: floa
     xi, sig = gpd_mle(exc)
     rate = exceedance_rate(xs, u, len(exc), hours, xi, sig)
     boots = np.empty((n_boot, len(xs)))
-    by_rec = {r: exc[recs == r] for r in np.unique(recs)}
-    for b in range(n_boot):
-        pick = rng.choice(block_records, size=len(block_records), replace=True)
-        e = np.concatenate([by_rec.get(r, np.zeros(0)) for r in pick])
+    for b, (_, e) in enumerate(record_bootstrap(rng, block_records, exc, recs, n_boot)):
         if len(e) < MIN_EXCEEDANCES:
             boots[b] = -np.inf
             continue

@@ -39,6 +39,7 @@ from stabflow.dynamics.tables import kernel_args
 from stabflow.statistics.ensemble import Model, simulate_record, wave_table
 from stabflow.statistics.extremes import decluster, gpd_mle
 from stabflow.io import annotate
+from stabflow.statistics.intervals import record_bootstrap
 from stabflow.statistics.signals import decorrelation_time
 
 
@@ -180,10 +181,7 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
         raw, raw_lo, raw_hi = crossing_rate(len(rec), n_samples, dt, cfg["alpha"])
         # bootstrap over records: clusters, GPD and P refitted
         boots = np.empty(int(cfg["n_boot"]))
-        by = {r: yc[rc == r] for r in np.unique(rc)}
-        for b in range(len(boots)):
-            pick = rng.choice(sample, size=len(sample), replace=True)
-            yb = np.concatenate([by.get(r, np.zeros(0)) for r in pick])
+        for b, (pick, yb) in enumerate(record_bootstrap(rng, sample, yc, rc, len(boots))):
             hb = float(ens["steps"].sel(record=pick).sum()) * dt / 3600.0
             ub = float(np.quantile(yb, cfg["metric_quantile"])) if len(yb) else 0.0
             boots[b] = len(yb) / hb * capsize_probability(yb, ub)[0]
