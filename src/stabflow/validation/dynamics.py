@@ -116,6 +116,9 @@ PRESSURE_DURATION, PRESSURE_DT, PRESSURE_FROM = 160.0, 0.1, 100.0
 #: small-wave steepness H / lambda and wavelengths lambda / L of the linear comparison
 SMALL_STEEPNESS = 1.0 / 2000.0
 SMALL_RATIOS = (1.0, 1.5, 2.0, 3.0)
+#: largest linear roll amplitude [degree] of the small-wave comparison (the wave is lowered below
+#: H/lambda = 1/2000 where the linear roll would exceed it, near a lightly damped roll resonance)
+MAX_LINEAR_ROLL = 0.1
 #: steepness of the d2phi/dzdt comparison (lambda = L)
 DPHI_STEEPNESS = 1.0 / 50.0
 #: long head waves: lambda / L and H / lambda
@@ -418,10 +421,17 @@ def small_wave_deviations(sec: Sections, st: xr.Dataset, co: Coefficients, rho: 
     C = stiffness_matrix(sec, rho, lcg, kg, h0, th0)
     lwl = float(st["lwl"])
     out = {name: np.empty((len(ratios), 3)) for name in excitations}
+    first = next(iter(excitations.values()))
     for j, r in enumerate(ratios):
         lam = r * lwl
         W = regular(steepness * lam, lam)
         we = float(W[1][0])  # zero speed: encounter = wave frequency
+        # near the roll resonance of a lightly damped hull H/lambda = 1/2000 can still give several
+        # degrees of roll, where GZ is no longer linear: lower the wave so that the linear roll
+        # amplitude stays within MAX_LINEAR_ROLL (both sides scale with the wave height)
+        roll = np.abs(linear_response(co, C, fk_excitation(first(W), h0, th0, we), we))[1]
+        if roll > np.radians(MAX_LINEAR_ROLL):
+            W = regular(steepness * lam * np.radians(MAX_LINEAR_ROLL) / roll, lam)
         te = 2 * np.pi / we
         t, x = model_record(sec, st, co, rho, W, heading_deg, max(40 * te, 10 * te + settle_time(co)), dt)
         td = harmonic_amplitudes(t, x, we, 10)
@@ -658,7 +668,8 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
         for j, v in enumerate(DOFS):
             row = _row(lambda which=which, j=j: small_dev(which, j),
                        f"small waves vs linear frequency domain ({label}): {v}, largest over lambda/L = 1-3", "%",
-                       ref + "; H/lambda = 1/2000, 45 deg", "consistency", tolerance=tol)
+                       ref + "; H/lambda = 1/2000 (lower where the linear roll would pass 0.1 deg), 45 deg",
+                       "consistency", tolerance=tol)
             if row.status != "SKIPPED" and np.isfinite(row.value):
                 d = small()[which][:, j]
                 row.reference += "; per lambda/L " + ", ".join(f"{r:g}: {x:+.2f} %" for r, x in zip(SMALL_RATIOS, d))
