@@ -49,7 +49,8 @@ def test_every_rule_has_a_cli_command():
     rules = set()
     for f in (ROOT / "workflow" / "rules").glob("*.smk"):
         rules |= set(re.findall(r"^rule (\w+):", f.read_text(), re.M))
-    assert len(rules) >= 14
+    # the pattern must find the rules themselves, or the subset test below would hold vacuously
+    assert {"hull", "statics", "ensemble_shard", "splittime", "validate_statics", "validate_ensemble", "report"} <= rules
     names = {"validate" if r == "validate_statics" else r.replace("_", "-") for r in rules}
     assert names <= set(COMMANDS), names - set(COMMANDS)
 

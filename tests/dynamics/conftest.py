@@ -8,11 +8,16 @@ from stabflow.hydrostatics.statics import compute_statics
 from ..conftest import SHIPS
 
 
-@pytest.fixture(scope="module")
-def barge():
-    """The shipped box barge with its statics and default 3-DOF coefficients."""
-    ship = load_ship(SHIPS / "barge.yaml")
+def ship_model(name: str):
+    """(ship, sections, statics, 3-DOF coefficients) of a shipped ship config."""
+    ship = load_ship(SHIPS / f"{name}.yaml")
     hull = build_hull(ship)
     st = compute_statics(ship, hull)
     sec = Sections(hull)
     return ship, sec, st, coefficients(ship, sec, st)
+
+
+@pytest.fixture(scope="module")
+def barge():
+    """The shipped box barge with its statics and default 3-DOF coefficients."""
+    return ship_model("barge")

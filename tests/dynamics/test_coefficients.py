@@ -13,10 +13,9 @@ import xarray as xr
 from stabflow import StabflowError
 from stabflow.config import load_ship, schema
 from stabflow.dynamics import coefficients
-from stabflow.geometry import Sections, build_hull
-from stabflow.hydrostatics.statics import compute_statics
 
 from ..conftest import SHIPS
+from .conftest import ship_model
 
 #: (absolute SI key, fractional key, a valid value of each) for every quantity of the config
 PAIRS = [
@@ -154,11 +153,7 @@ def test_every_dynamics_key_documented():
 
 @pytest.fixture(scope="module")
 def trawler():
-    ship = load_ship(SHIPS / "trawler.yaml")
-    hull = build_hull(ship)
-    st = compute_statics(ship, hull)
-    sec = Sections(hull)
-    return ship, sec, st, coefficients(ship, sec, st)
+    return ship_model("trawler")
 
 
 def test_trawler_coefficients_are_the_published_ones(trawler):
@@ -177,11 +172,7 @@ def test_trawler_coefficients_are_the_published_ones(trawler):
 
 @pytest.fixture(scope="module", params=SHIPPED)
 def shipped(request):
-    ship = load_ship(SHIPS / f"{request.param}.yaml")
-    hull = build_hull(ship)
-    st = compute_statics(ship, hull)
-    sec = Sections(hull)
-    return ship, sec, st
+    return ship_model(request.param)[:3]
 
 
 def test_shipped_ships_keep_the_default_coefficients(shipped):

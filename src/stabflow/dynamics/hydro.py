@@ -26,7 +26,7 @@ def bem_mesh(ship, max_faces: int = 20000):
     import trimesh
 
     from stabflow import StabflowError
-    from stabflow.geometry.mesh import load_mesh
+    from stabflow.geometry.mesh import ship_mesh
 
     h = ship.hull
     if h["source"] == "box":
@@ -36,8 +36,7 @@ def bem_mesh(ship, max_faces: int = 20000):
         return trimesh.Trimesh(v, f, process=False)
     if h["source"] != "mesh":
         raise StabflowError(f"{ship.path}: hull.source: Capytaine needs a mesh or box hull, not {h['source']!r}")
-    tr = h.get("transform", {})
-    m = load_mesh(ship.hull_file(), tr.get("scale", 1.0), tr.get("flip_z", False), tr.get("translate", [0, 0, 0]))
+    m = ship_mesh(ship)
     if len(m.faces) > max_faces:
         raise StabflowError(f"{ship.hull_file()}: {len(m.faces)} triangles is too many for a dense BEM (max {max_faces})")
     return m

@@ -8,7 +8,7 @@ import xarray as xr
 from stabflow import StabflowError
 from stabflow.config import Ship
 from stabflow.geometry.analytic import box_contour, wigley_contour
-from stabflow.geometry.mesh import cut_loops, cut_segments, load_mesh
+from stabflow.geometry.mesh import cut_loops, cut_segments, ship_mesh
 from stabflow.geometry.offsets import offsets_contour, read_offsets
 from stabflow.geometry.sections import Sections, apply_topside, check_contour, envelope_contour, loop_contour, sections_dataset
 
@@ -110,8 +110,7 @@ def build_hull(ship: Ship) -> xr.Dataset:
         attrs["hull_file"] = path.name
     else:  # mesh
         path = ship.hull_file()
-        tr = h.get("transform", {})
-        mesh = load_mesh(path, tr.get("scale", 1.0), tr.get("flip_z", False), tr.get("translate", [0.0, 0.0, 0.0]))
+        mesh = ship_mesh(ship)
         lo, hi = mesh.bounds
         v = mesh.vertices
         mid = np.abs(v[:, 0] - 0.5 * (lo[0] + hi[0])) <= 0.25 * (hi[0] - lo[0])

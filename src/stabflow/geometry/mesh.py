@@ -53,6 +53,13 @@ def load_mesh(path: str | Path, scale: float = 1.0, flip_z: bool = False, transl
     return out
 
 
+def ship_mesh(ship) -> trimesh.Trimesh:
+    """The mesh of a ``source: mesh`` ship (``stabflow.config.Ship``) in ship axes, after the
+    config's ``hull.transform`` (flip, scale, shift)."""
+    tr = ship.hull.get("transform", {})
+    return load_mesh(ship.hull_file(), tr.get("scale", 1.0), tr.get("flip_z", False), tr.get("translate", [0.0, 0.0, 0.0]))
+
+
 def cut_segments(mesh: trimesh.Trimesh, x: float) -> np.ndarray:
     """(m, 2, 2) (y, z) segments of the mesh cut by the plane at ``x``."""
     segs = trimesh.intersections.mesh_plane(mesh, plane_normal=[1.0, 0.0, 0.0], plane_origin=[x, 0.0, 0.0])

@@ -241,7 +241,7 @@ def pressure_mesh(ship: Ship, max_faces: int | None = None, reach: float | None 
     """
     import trimesh
 
-    from stabflow.geometry.mesh import load_mesh
+    from stabflow.geometry.mesh import ship_mesh
 
     h = ship.hull
     if h["source"] == "box":
@@ -255,8 +255,7 @@ def pressure_mesh(ship: Ship, max_faces: int | None = None, reach: float | None 
     if "topside" in h and (reach is None or reach >= h["topside"]["z_start"]):
         raise NotApplicable(f"topsides replaced from z = {h['topside']['z_start']:g} m (hull.topside), which these "
                             "waves reach, but the STL for the pressure reference carries the original ones")
-    tr = h.get("transform", {})
-    m = load_mesh(ship.hull_file(), tr.get("scale", 1.0), tr.get("flip_z", False), tr.get("translate", [0.0, 0.0, 0.0]))
+    m = ship_mesh(ship)
     if max_faces is not None and len(m.faces) > max_faces:
         raise NotApplicable(f"{ship.hull_file().name} has {len(m.faces)} triangles (> {max_faces}): a pressure-"
                             "integrated time-domain record would take minutes (the reference runs on the box barge)")

@@ -21,6 +21,7 @@ import numpy as np
 import xarray as xr
 
 from stabflow.config import Ship
+from stabflow.geometry.mesh import ship_mesh
 from stabflow.validation import Check, run_check
 from stabflow.validation.references import exact_box_gz, mesh_gz
 
@@ -39,14 +40,6 @@ TOL_WIGLEY = 0.05  # % (measured: volume -0.048 %, BM +0.048 % at 41 stations)
 TOL_MESH = 0.5  # % GZmax (measured: DTMB 0.21 %, DTC 0.11 %)
 TOL_NAVALTOOLBOX = 1.0  # % GZmax (measured: DTMB 0.26 %, DTC 0.65 %)
 TOL_STATIONS = 0.5  # % GZmax
-
-
-def ship_mesh(ship: Ship):
-    """The ship's hull mesh in ship axes (after the config's transform)."""
-    from stabflow.geometry.mesh import load_mesh
-
-    tr = ship.hull.get("transform", {})
-    return load_mesh(ship.hull_file(), tr.get("scale", 1.0), tr.get("flip_z", False), tr.get("translate", [0, 0, 0]))
 
 
 def navaltoolbox_gz(ship: Ship, volume, lcg, kg, heel_deg) -> np.ndarray:
