@@ -13,10 +13,11 @@ import numpy as np
 
 from stabflow.config import Ship, load_ship
 from stabflow.dynamics import coefficients, simulate
+from stabflow.dynamics.model import initial_state, parameters
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
 from stabflow.geometry import Sections, build_hull
 from stabflow.geometry.mesh import load_mesh
-from stabflow.hydrostatics.statics import compute_statics, equilibrium
+from stabflow.hydrostatics.statics import compute_statics
 from stabflow.waves.spectra import bretschneider
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -50,10 +51,9 @@ def main():
               f"(30 min record incl. wave precomputation, roll std {float(ds['roll'].std()):.2f} deg)")
     tr = base.hull.get("transform", {})
     mesh = load_mesh(base.hull_file(), 1.0, False, tr.get("translate", [0, 0, 0]))
-    h0, th0, _ = equilibrium(sec, float(st.volume), float(st.lcg), float(st.kg))
     pm = PressureModel(mesh.vertices, mesh.faces, base.rho, float(st.lcg), float(st.kg), W, 45.0, 0.0, decay=True)
     t0 = time.process_time()
-    simulate_pressure(pm, co, h0, th0, 5.0, dt)
+    simulate_pressure(pm, parameters(co, base.rho, float(st.lcg), float(st.kg), 45.0), initial_state(sec, st), 5.0, dt)
     cpu_p = (time.process_time() - t0) / 5.0 * 3600.0
     print(f"pressure integration ({len(mesh.faces)} panels, decay on): {cpu_p:10.1f} CPU-s per simulated hour")
     print(f"ratio pressure / volume ({n} stations): {cpu_p / (cpu / 0.5):.0f} x")

@@ -29,7 +29,8 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "draft_mid": ("m", "draft at midships, earth-vertical, from the baseline"),
     "trim": ("degree", "trim angle at each heel (free trim), positive bow down"),
     "trim_upright": ("degree", "trim angle of the upright equilibrium, positive bow down"),
-    "heave": ("m", "earth height of the body origin (midships, baseline) above calm water; in time series, from equilibrium"),
+    "heave": ("m", "statics: earth height of the body origin (midships, baseline) above calm water at each heel; "
+                   "time series: rise of G above its calm-water equilibrium (heave of G), positive up"),
     "volume": ("m3", "displaced volume"),
     "mass": ("kg", "displacement mass"),
     "lcb": ("m", "longitudinal centre of buoyancy from midships, positive forward"),
@@ -75,7 +76,7 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "pitch": ("degree", "pitch angle from equilibrium trim, positive bow down"),
     "roll_rate": ("degree/s", "roll rate"),
     "pitch_rate": ("degree/s", "pitch rate"),
-    "heave_rate": ("m/s", "heave velocity, positive up"),
+    "heave_rate": ("m/s", "vertical velocity of G, positive up"),
     "fz": ("N", "vertical FK + hydrostatic force, earth axes"),
     "mx": ("N m", "FK + hydrostatic roll moment about G, earth axes"),
     "my": ("N m", "FK + hydrostatic pitch moment about G, earth axes"),

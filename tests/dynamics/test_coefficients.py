@@ -163,8 +163,9 @@ def test_trawler_coefficients_are_the_published_ones(trawler):
     assert (co.i44, co.i55, co.i66) == (1.522e6, 8.279e6, 7.676e6)
     assert (co.a33, co.a44, co.a55) == (1.980e5, 3.189e5, 8.866e6)
     assert (co.b33, co.b44, co.b55, co.b44q) == (1.9e5, 1.74e4, 4.67e6, 1.45e6)
-    # restoring from the statics: C44 = rho g V GM
-    assert co.c44 == pytest.approx(ship.rho * 9.80665 * float(st.volume) * float(st.gm), rel=1e-6)
+    # restoring from the statics: C44 = rho g V GM cos(trim), roll being about the trimmed body x-axis
+    ct = np.cos(np.radians(float(st.trim_upright)))
+    assert co.c44 == pytest.approx(ship.rho * 9.80665 * float(st.volume) * float(st.gm) * ct, rel=1e-6)
     assert 6.0 < co.natural_period("roll") < 6.6
 
 

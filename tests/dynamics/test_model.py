@@ -6,6 +6,8 @@ import trimesh
 
 from stabflow.config import load_ship
 from stabflow.dynamics import coefficients, simulate
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics.model import initial_state, parameters
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
 from stabflow.geometry import Sections, build_hull
 from stabflow.hydrostatics.statics import compute_statics, equilibrium
@@ -73,6 +75,15 @@ def test_wave_table_regular():
     assert tab[0, 0, 2] == pytest.approx(-9.80665 * k * np.cos(k * 25.0) * smith)
 
 
+def _pressure(pm, sec, st, co, rho, heading_deg, duration=160.0, dt=0.1):
+    """Pressure-integrated record of the time domain's equations from rest: (t, (heave of G, roll,
+    pitch) from equilibrium [m, rad])."""
+    s0 = initial_state(sec, st)
+    t, s = simulate_pressure(pm, parameters(co, rho, float(st.lcg), float(st.kg), heading_deg), s0, duration, dt)
+    dofs = [K.S_Z, K.S_ROLL, K.S_PITCH]
+    return t, s[:, dofs] - s0[dofs]
+
+
 def test_volume_vs_pressure_integration_barge_quartering(barge):
     """Seed Figs 5-6: box barge, quartering regular waves lambda = L, H = T/3, decay off:
     heave, roll and pitch amplitudes of the volume-based model within 4 % of pressure integration
@@ -84,7 +95,7 @@ def test_volume_vs_pressure_integration_barge_quartering(barge):
     h0, th0, _ = equilibrium(sec, float(st.volume), 0.0, float(st.kg))
     W = regular(2.0, 100.0)
     pm = PressureModel(v, f, ship.rho, 0.0, float(st.kg), W, 45.0, 0.0, decay=False)
-    t, s = simulate_pressure(pm, co, h0, th0, 160.0, 0.1)
+    t, s = _pressure(pm, sec, st, co, ship.rho, 45.0)
     ds = simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 160.0, 0.1)
     last = t > 100
     for name, i in [("heave", 0), ("roll", 1), ("pitch", 2)]:
@@ -122,7 +133,7 @@ def test_dphi_dzdt_option_moves_toward_pressure_with_decay(barge):
     Te = 2 * np.pi / we
     from stabflow.dynamics.rao import first_harmonic
 
-    t, s = simulate_pressure(PressureModel(v, f, ship.rho, 0.0, float(st.kg), W, 45.0, 0.0, decay=True), co, h0, th0, 160.0, 0.1)
+    t, s = _pressure(PressureModel(v, f, ship.rho, 0.0, float(st.kg), W, 45.0, 0.0, decay=True), sec, st, co, ship.rho, 45.0)
     sel = t >= t[-1] - 5 * Te
     ref = np.array([first_harmonic(t[sel], s[sel, i], we)[0] for i in (0, 2)])
     out = {}

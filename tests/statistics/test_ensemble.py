@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from stabflow.dynamics._kernels import S_ROLL
 from stabflow.config import load_pipeline, load_ship
 from stabflow.statistics.ensemble import build_model, merge, run_shard, simulate_record
 from stabflow.statistics.signals import crossings
@@ -76,7 +77,7 @@ def test_record_regenerates_and_restarts_bit_identically(model):
     step n continues identically (the split-time step relies on both)."""
     ens = merge([run_shard(model, range(0, 6), progress=False)])
     out, last = simulate_record(model, 4)
-    np.testing.assert_array_equal(np.degrees(out[: last + 1, 1]), ens["sample_roll"].values[4, : last + 1])
+    np.testing.assert_array_equal(np.degrees(out[: last + 1, S_ROLL]), ens["sample_roll"].values[4, : last + 1])
     n0 = 300
     again, last2 = simulate_record(model, 4, s_start=out[n0], n_start=n0)
     np.testing.assert_array_equal(again[n0: last2 + 1], out[n0: last + 1])

@@ -183,35 +183,180 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
 
 
 # positions in the parameter vector ``p`` of the RK4 kernels (built by
-# ``stabflow.dynamics.model.ModelParameters.vector``)
+# ``stabflow.dynamics.model.ModelParameters.vector``): scalars, then the 3x3 inertia tensor about G
+# in body axes, the 6x6 added-mass and linear damping matrices of the generalized coordinates and
+# the six free/held flags (all row-major)
 P_RHO = 0
 P_G = 1
 P_XG = 2
 P_ZG = 3
 P_MASS = 4
-P_M33 = 5
-P_M44 = 6
-P_M55 = 7
-P_B33 = 8
-P_B44 = 9
-P_B44Q = 10
-P_B55 = 11
-P_COS_BETA = 12
-P_SIN_BETA = 13
-N_PARAMETERS = 14
+P_B44Q = 5
+P_COS_BETA = 6
+P_SIN_BETA = 7
+P_INERTIA = 8
+P_ADDED_MASS = P_INERTIA + 9
+P_DAMPING = P_ADDED_MASS + 36
+P_FREE = P_DAMPING + 36
+N_PARAMETERS = P_FREE + 6
+
+# the state: generalized coordinates q = (x, y, z of G in the earth frame moving with the mean
+# speed and course [m]; roll phi, pitch theta, yaw psi [rad], Euler angles of R = Rz Ry Rx) and
+# their rates q' at positions S_RATE + j
+S_X = 0
+S_Y = 1
+S_Z = 2
+S_ROLL = 3
+S_PITCH = 4
+S_YAW = 5
+S_RATE = 6
+N_STATE = 12
+
+
+@njit(cache=True, inline="always")
+def _origin_height(z, phi, theta, xg, zg):
+    """Earth height [m] of the body origin (keel, midships) when G (body x = xg, z = zg, on the
+    centreline) is at height z: z_G = h + (R r_G)_z = h - sin(theta) xg + cos(theta) cos(phi) zg."""
+    return z + math.sin(theta) * xg - math.cos(theta) * math.cos(phi) * zg
 
 
 @njit(cache=True)
-def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f, work):
-    """State derivative. s = (h, phi, theta, hdot, phidot, thetadot); p = parameter vector (P_*)."""
-    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], s[0], s[1], s[2], p[P_COS_BETA],
-          p[P_SIN_BETA], wave, f, work)
-    ds[0] = s[3]
-    ds[1] = s[4]
-    ds[2] = s[5]
-    ds[3] = (f[2] - p[P_MASS] * p[P_G] - p[P_B33] * s[3]) / p[P_M33]
-    ds[4] = (f[3] - p[P_B44] * s[4] - p[P_B44Q] * s[4] * abs(s[4])) / p[P_M44]
-    ds[5] = (f[4] - p[P_B55] * s[5]) / p[P_M55]
+def _generalized_system(p, s, f, mq, r):
+    """Rigid-body equations about G as M(q) q'' = r(q, q', loads).
+
+    ``f`` (6,) holds the loads of ``_fkhs`` (force and moment about G, in the heading frame: earth
+    axes turned by the yaw psi). Newton for G in earth axes, m v_G' = F + m g_vec, and Euler in
+    body axes, I w' + w x I w = M_b, with w = E(phi, theta) (phi', theta', psi') the body angular
+    velocity of the ZYX Euler angles, projected on the generalized coordinates q (Kane's method:
+    J^T of each equation, J = diag(1, 1, 1, E)); the added mass A and linear damping B act on q
+    (seakeeping axes, constant), and the quadratic roll damping on phi'. Fills ``mq`` (6, 6) =
+    J^T M_RB J + A and ``r`` (6,) = J^T (tau - M_RB J' q' - (0, w x I w)) - B q'
+    - B44q phi'|phi'| e_phi.
+    """
+    m = p[P_MASS]
+    phi = s[S_ROLL]
+    th = s[S_PITCH]
+    psi = s[S_YAW]
+    pd = s[S_RATE + S_ROLL]
+    td = s[S_RATE + S_PITCH]
+    yd = s[S_RATE + S_YAW]
+    cp = math.cos(phi)
+    sp = math.sin(phi)
+    ct = math.cos(th)
+    st = math.sin(th)
+    cy = math.cos(psi)
+    sy = math.sin(psi)
+    # force in earth axes (heading frame turned by psi) with gravity; moment in body axes,
+    # M_b = (Ry Rx)^T M
+    r[0] = cy * f[0] - sy * f[1]
+    r[1] = sy * f[0] + cy * f[1]
+    r[2] = f[2] - m * p[P_G]
+    x1 = ct * f[3] - st * f[5]
+    z1 = st * f[3] + ct * f[5]
+    mb0 = x1
+    mb1 = cp * f[4] + sp * z1
+    mb2 = -sp * f[4] + cp * z1
+    # w = E eta', eta = (phi, theta, psi); a = E' eta' (the velocity part of w')
+    e00, e01, e02 = 1.0, 0.0, -st
+    e10, e11, e12 = 0.0, cp, sp * ct
+    e20, e21, e22 = 0.0, -sp, cp * ct
+    w0 = pd - st * yd
+    w1 = cp * td + sp * ct * yd
+    w2 = -sp * td + cp * ct * yd
+    a0 = -ct * td * yd
+    a1 = -sp * pd * td + (cp * ct * pd - sp * st * td) * yd
+    a2 = -cp * pd * td - (sp * ct * pd + cp * st * td) * yd
+    I = p[P_INERTIA:P_INERTIA + 9]
+    # body-axis torque left for the angular acceleration: M_b - w x I w - I a
+    iw0 = I[0] * w0 + I[1] * w1 + I[2] * w2
+    iw1 = I[3] * w0 + I[4] * w1 + I[5] * w2
+    iw2 = I[6] * w0 + I[7] * w1 + I[8] * w2
+    t0 = mb0 - (w1 * iw2 - w2 * iw1) - (I[0] * a0 + I[1] * a1 + I[2] * a2)
+    t1 = mb1 - (w2 * iw0 - w0 * iw2) - (I[3] * a0 + I[4] * a1 + I[5] * a2)
+    t2 = mb2 - (w0 * iw1 - w1 * iw0) - (I[6] * a0 + I[7] * a1 + I[8] * a2)
+    E = ((e00, e01, e02), (e10, e11, e12), (e20, e21, e22))
+    T = (t0, t1, t2)
+    for i in range(3):
+        r[3 + i] = E[0][i] * T[0] + E[1][i] * T[1] + E[2][i] * T[2]
+    for i in range(6):
+        for j in range(6):
+            mq[i, j] = p[P_ADDED_MASS + 6 * i + j]
+    for i in range(3):
+        mq[i, i] += m
+        for j in range(3):
+            # (E^T I E)[i, j]
+            acc = 0.0
+            for k in range(3):
+                for l in range(3):
+                    acc += E[k][i] * I[3 * k + l] * E[l][j]
+            mq[3 + i, 3 + j] += acc
+    for i in range(6):
+        acc = 0.0
+        for j in range(6):
+            acc += p[P_DAMPING + 6 * i + j] * s[S_RATE + j]
+        r[i] -= acc
+    r[S_ROLL] -= p[P_B44Q] * pd * abs(pd)
+
+
+@njit(cache=True)
+def _accelerations(p, s, f, acc, mq, r):
+    """Generalized accelerations q'' (6,) into ``acc`` for the loads ``f`` (``mq`` (6, 6) and ``r``
+    (6,) are scratch). A held coordinate (``p[P_FREE + j] == 0``) gets the row q_j'' = 0; the
+    6x6 system is solved by Gaussian elimination with partial pivoting (no allocation)."""
+    _generalized_system(p, s, f, mq, r)
+    for j in range(6):
+        if p[P_FREE + j] == 0.0:
+            for k in range(6):
+                mq[j, k] = 0.0
+            mq[j, j] = 1.0
+            r[j] = 0.0
+    for c in range(6):
+        piv = c
+        big = abs(mq[c, c])
+        for i in range(c + 1, 6):
+            if abs(mq[i, c]) > big:
+                big = abs(mq[i, c])
+                piv = i
+        if piv != c:
+            for k in range(6):
+                t = mq[c, k]
+                mq[c, k] = mq[piv, k]
+                mq[piv, k] = t
+            t = r[c]
+            r[c] = r[piv]
+            r[piv] = t
+        for i in range(c + 1, 6):
+            fac = mq[i, c] / mq[c, c]
+            if fac != 0.0:
+                for k in range(c, 6):
+                    mq[i, k] -= fac * mq[c, k]
+                r[i] -= fac * r[c]
+    for i in range(5, -1, -1):
+        v = r[i]
+        for k in range(i + 1, 6):
+            v -= mq[i, k] * acc[k]
+        acc[i] = v / mq[i, i]
+
+
+@njit(cache=True)
+def _loads(xs, dx, ys, zs, npts, tab, lim, p, wave, s, f, work):
+    """FK + HS loads ``f`` (6,) (``_fkhs``) for the state ``s``: body origin placed from G."""
+    h = _origin_height(s[S_Z], s[S_ROLL], s[S_PITCH], p[P_XG], p[P_ZG])
+    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], h, s[S_ROLL], s[S_PITCH],
+          p[P_COS_BETA], p[P_SIN_BETA], wave, f, work)
+
+
+@njit(cache=True)
+def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f, work, mq, r):
+    """State derivative of s = (q, q') (``S_*`` positions); p = parameter vector (``P_*``).
+
+    The FK + HS loads are evaluated with the body origin placed from G's height (``_loads``) at
+    the stations' tabulated wave (3-DOF: surge, sway and yaw held, so the stations' horizontal
+    positions are the tabulated ones)."""
+    _loads(xs, dx, ys, zs, npts, tab, lim, p, wave, s, f, work)
+    for j in range(6):
+        ds[j] = s[S_RATE + j]
+    _accelerations(p, s, f, ds[S_RATE:], mq, r)
 
 
 @njit(cache=True, nogil=True)
@@ -219,49 +364,49 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
     """Fixed-step RK4 from step ``n0`` to ``nsteps``; ``wtab`` (2 nsteps + 1, nst, nq) on the
     half-step grid.
 
-    ``out`` (nsteps + 1, 6) receives the state (row n0 is set to ``s0``); ``forces``
+    ``out`` (nsteps + 1, N_STATE) receives the state (row n0 is set to ``s0``); ``forces``
     (nsteps + 1, 6) the FK+HS loads, or pass a (0, 6) array to skip them. Stops when
     |phi| > phi_cap (capsize). Returns the index of the last step done; no allocation in the loop.
     """
-    n6 = 6
-    s = np.empty(n6)
-    k1 = np.empty(n6)
-    k2 = np.empty(n6)
-    k3 = np.empty(n6)
-    k4 = np.empty(n6)
-    tmp = np.empty(n6)
+    ns = N_STATE
+    s = np.empty(ns)
+    k1 = np.empty(ns)
+    k2 = np.empty(ns)
+    k3 = np.empty(ns)
+    k4 = np.empty(ns)
+    tmp = np.empty(ns)
     f = np.empty(6)
+    mq = np.empty((6, 6))
+    r = np.empty(6)
     work = np.empty((xs.shape[0], 5))
     keep = forces.shape[0] > 0
-    for q in range(n6):
+    for q in range(ns):
         s[q] = s0[q]
         out[n0, q] = s0[q]
     if keep:
-        _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], s[0], s[1], s[2], p[P_COS_BETA], p[P_SIN_BETA],
-              wtab[2 * n0], f, work)
+        _loads(xs, dx, ys, zs, npts, tab, lim, p, wtab[2 * n0], s, f, work)
         for q in range(6):
             forces[n0, q] = f[q]
     for n in range(n0, nsteps):
         j = 2 * n
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j], s, k1, f, work)
-        for q in range(n6):
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j], s, k1, f, work, mq, r)
+        for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k1[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k2, f, work)
-        for q in range(n6):
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k2, f, work, mq, r)
+        for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k2[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k3, f, work)
-        for q in range(n6):
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k3, f, work, mq, r)
+        for q in range(ns):
             tmp[q] = s[q] + dt * k3[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], tmp, k4, f, work)
-        for q in range(n6):
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], tmp, k4, f, work, mq, r)
+        for q in range(ns):
             s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
             out[n + 1, q] = s[q]
         if keep:
-            _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], s[0], s[1], s[2], p[P_COS_BETA], p[P_SIN_BETA],
-                  wtab[j + 2], f, work)
+            _loads(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], s, f, work)
             for q in range(6):
                 forces[n + 1, q] = f[q]
-        if abs(s[1]) > phi_cap:
+        if abs(s[S_ROLL]) > phi_cap:
             return n + 1
     return nsteps
 
@@ -269,7 +414,7 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
 @njit(cache=True, parallel=True)
 def _simulate_batch(xs, dx, ys, zs, npts, tab, lim, p, wtabs, dt, nsteps, s0, phi_cap, out, last):
     """Records in parallel (``prange``): ``wtabs`` (nrec, 2 nsteps + 1, nst, nq) → ``out``
-    (nrec, nsteps + 1, 6), ``last`` (nrec,) index of the last step done. Each record is the same
+    (nrec, nsteps + 1, N_STATE), ``last`` (nrec,) index of the last step done. Each record is the same
     computation as ``_simulate``, so results do not depend on the number of threads."""
     nofo = np.empty((0, 6))
     for r in prange(wtabs.shape[0]):

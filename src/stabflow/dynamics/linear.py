@@ -1,9 +1,10 @@
 """Linear frequency-domain solution of the same 3-DOF equations (verification of the time domain).
 
-[-we^2 (M + A) + i we B + C] X = F_FK, with C the hydrostatic stiffness matrix (heave, roll,
-pitch, by central differences of the FK+HS kernel in calm water, so couplings C35/C53 included)
-and F_FK the first harmonic of the Froude-Krylov loads on the ship held at equilibrium in the
-wave, from the pressure-integration reference with the decay switched off.
+[-we^2 (M + A) + i we B + C] X = F_FK in the generalized coordinates of the time domain (heave of
+G, roll, pitch; :mod:`stabflow.dynamics.rigid_body`), with C the restoring matrix (central
+differences of the generalized FK + HS forces in calm water, so couplings C35/C53 included) and
+F_FK the generalized forces of the first harmonic of the Froude-Krylov loads on the ship held at
+equilibrium in the wave (the kernel's or the pressure-integration reference's).
 """
 
 from __future__ import annotations
@@ -11,36 +12,62 @@ from __future__ import annotations
 import numpy as np
 
 from stabflow.constants import G
-from stabflow.dynamics._kernels import _fkhs
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics.rigid_body import generalized_loads, generalized_system
 from stabflow.dynamics.tables import kernel_args
 from stabflow.dynamics.rao import first_harmonic
 
 
+def _rest_parameters(rho, xg, zg) -> np.ndarray:
+    """Parameter vector for the generalized forces at rest: only rho, g and G matter there."""
+    from stabflow.dynamics.model import ModelParameters
+
+    return ModelParameters(rho=rho, g=G, xg=xg, zg=zg, mass=0.0, b44q=0.0, cos_beta=1.0, sin_beta=0.0,
+                           inertia=np.zeros((3, 3)), added_mass=np.zeros((6, 6)), damping=np.zeros((6, 6))).vector()
+
+
+def rest_coordinates(xg, zg, h0, th0) -> np.ndarray:
+    """Generalized coordinates (6,) of the calm-water equilibrium given by the body origin's height
+    h0 [m] and trim th0 [rad]: G at z = h0 - sin(th0) xg + cos(th0) zg."""
+    q = np.zeros(6)
+    q[K.S_Z] = h0 - np.sin(th0) * xg + np.cos(th0) * zg
+    q[K.S_PITCH] = th0
+    return q
+
+
 def stiffness_matrix(sec, rho, xg, zg, h0, th0, step: float = 1e-5) -> np.ndarray:
-    """3x3 restoring matrix of (heave, roll, pitch) about the calm-water equilibrium (h0 [m], th0
-    [rad]) by central differences of the FK+HS kernel with ``step`` [m or rad]: rows (Fz, Mx, My),
-    columns (h, phi, theta); units N/m, N/rad, N m/m, N m/rad."""
+    """3x3 restoring matrix of the coordinates (heave of G, roll, pitch) about the calm-water
+    equilibrium (body origin at h0 [m], trim th0 [rad]) by central differences of the generalized
+    FK + HS forces with ``step`` [m or rad]; units N/m, N/rad, N m/m, N m/rad."""
+    p = _rest_parameters(rho, xg, zg)
     w = np.zeros((len(sec.x), 2))
     f = np.empty(6)
+    work = np.empty((len(sec.x), 5))
     C = np.empty((3, 3))
-    e = step
-    base = np.array([h0, 0.0, th0])
-    for j in range(3):
+    base = rest_coordinates(xg, zg, h0, th0)
+    dofs = (K.S_Z, K.S_ROLL, K.S_PITCH)
+    for j, d in enumerate(dofs):
         loads = []
         for sgn in (1, -1):
-            q = base.copy()
-            q[j] += sgn * e
-            _fkhs(*kernel_args(sec), rho, G, xg, zg, q[0], q[1], q[2], 1.0, 0.0, w, f, np.empty((len(sec.x), 5)))
-            loads.append(np.array([f[2], f[3], f[4]]))
-        C[:, j] = -(loads[0] - loads[1]) / (2 * e)
+            s = np.zeros(K.N_STATE)
+            s[:6] = base
+            s[d] += sgn * step
+            K._loads(*kernel_args(sec), p, w, s, f, work)
+            _, r = generalized_system(p, s, f)
+            loads.append(r[list(dofs)])
+        C[:, j] = -(loads[0] - loads[1]) / (2 * step)
     return C
 
 
 def fk_excitation(model, h0, th0, we, n=64) -> np.ndarray:
-    """Complex FK amplitudes (Fz, Mx, My) on the fixed ship over one encounter period."""
+    """Complex amplitudes of the generalized FK forces (heave, roll, pitch) on the ship held at
+    equilibrium (origin height h0 [m], trim th0 [rad]) over one encounter period; ``model`` has
+    ``loads(t, h, phi, theta)`` and the centre of gravity ``xg``, ``zg`` [m]."""
     Te = 2 * np.pi / we
     t = np.arange(n) * Te / n
-    L = np.array([model.loads(tt, h0, 0.0, th0)[[2, 3, 4]] for tt in t])
+    p = _rest_parameters(1.0, model.xg, model.zg)
+    q = rest_coordinates(model.xg, model.zg, h0, th0)
+    L = np.array([generalized_loads(p, q, model.loads(tt, h0, 0.0, th0))[[K.S_Z, K.S_ROLL, K.S_PITCH]] for tt in t])
     out = np.empty(3, complex)
     for j in range(3):
         amp, ph = first_harmonic(t, L[:, j], we)
@@ -49,7 +76,9 @@ def fk_excitation(model, h0, th0, we, n=64) -> np.ndarray:
 
 
 def linear_response(co, C, F, we) -> np.ndarray:
-    """Complex (heave, roll, pitch) amplitudes; roll damping linear only (small amplitude)."""
+    """Complex (heave of G, roll, pitch) amplitudes; roll damping linear only (small amplitude).
+    M is diagonal: the generalized mass at the upright equilibrium for a principal-axes inertia
+    tensor (E^T I E has no roll-pitch term at zero heel)."""
     M = np.diag([co.mass + co.a33, co.i44 + co.a44, co.i55 + co.a55])
     B = np.diag([co.b33, co.b44, co.b55])
     return np.linalg.solve(-we**2 * M + 1j * we * B + C, F)

@@ -1,11 +1,11 @@
 """3-DOF hybrid model: nonlinear volume-based FK + HS forces, ODE-like radiation terms.
 
-(m + A33) h'' = F_z - m g - B33 h'
-(I44 + A44) phi'' = M_x - B44 phi' - B44q phi'|phi'|
-(I55 + A55) theta'' = M_y - B55 theta'
-F, M from ``_fkhs`` (paper 000 eqs 9, 11, 12) about G in earth axes; surge, sway and yaw are
-prescribed (constant speed and heading). Fixed-step RK4 (``_simulate``), wave precomputed at the
-stations on the half-step grid.
+Rigid-body equations about G (:mod:`stabflow.dynamics.rigid_body`): Newton for G and Euler in body
+axes, projected on the coordinates (heave of G, roll, pitch) with surge, sway and yaw held
+(constant speed and heading), plus added mass A33, A44, A55, linear damping B33, B44, B55 and
+quadratic roll damping B44q on those coordinates. F, M from ``_fkhs`` (paper 000 eqs 9, 11, 12)
+about G, with the body origin placed from G's height. Fixed-step RK4 (``_simulate``), wave
+precomputed at the stations on the half-step grid.
 """
 
 from __future__ import annotations
@@ -21,7 +21,9 @@ from stabflow.io import annotate
 from stabflow.constants import G
 from stabflow.hydrostatics.statics import equilibrium
 from stabflow.waves.synthesis import station_wave_table
-from stabflow.dynamics._kernels import _fkhs, _simulate
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics._kernels import _simulate
+from stabflow.dynamics.rigid_body import THREE_DOF
 from stabflow.dynamics.tables import SectionTables, kernel_args
 
 
@@ -45,6 +47,18 @@ class Coefficients:
     c44: float
     c55: float
     i66: float
+
+    def inertia_tensor(self) -> np.ndarray:
+        """Inertia tensor about G in body axes (3, 3) [kg m^2] (principal axes assumed)."""
+        return np.diag([self.i44, self.i55, self.i66])
+
+    def added_mass_matrix(self) -> np.ndarray:
+        """Added mass of the generalized coordinates (6, 6) [kg, kg m^2]: A33, A44, A55."""
+        return np.diag([0.0, 0.0, self.a33, self.a44, self.a55, 0.0])
+
+    def damping_matrix(self) -> np.ndarray:
+        """Linear damping of the generalized coordinates (6, 6) [N s/m, N m s/rad]."""
+        return np.diag([0.0, 0.0, self.b33, self.b44, self.b55, 0.0])
 
     def natural_period(self, mode: str) -> float:
         """Undamped natural period [s] of 'heave', 'roll' or 'pitch'."""
@@ -156,10 +170,11 @@ class ModelParameters:
     """What the RK4 kernels need besides the sections and the wave, by name.
 
     Attributes: water density ``rho`` [kg/m^3], gravity ``g`` [m/s^2], centre of gravity ``xg``
-    (from midships, + forward) and ``zg`` (above the baseline) [m], ``mass`` [kg], the total
-    inertias ``m33`` [kg], ``m44``, ``m55`` [kg m^2] (rigid body + added), damping ``b33``
-    [N s/m], ``b44`` [N m s/rad], ``b44q`` [N m s^2/rad^2], ``b55`` [N m s/rad], and the wave
-    heading as ``cos_beta``, ``sin_beta``.
+    (from midships, + forward) and ``zg`` (above the baseline) [m], ``mass`` [kg], quadratic roll
+    damping ``b44q`` [N m s^2/rad^2], the wave heading as ``cos_beta``, ``sin_beta``, the inertia
+    tensor about G in body axes ``inertia`` (3, 3) [kg m^2], the ``added_mass`` and linear
+    ``damping`` (6, 6) of the generalized coordinates (surge, sway, heave of G, roll, pitch, yaw)
+    [kg, kg m^2; N s/m, N m s/rad] and ``free`` (6,): 1 for a free coordinate, 0 for a held one.
     """
 
     rho: float
@@ -167,33 +182,47 @@ class ModelParameters:
     xg: float
     zg: float
     mass: float
-    m33: float
-    m44: float
-    m55: float
-    b33: float
-    b44: float
     b44q: float
-    b55: float
     cos_beta: float
     sin_beta: float
+    inertia: np.ndarray
+    added_mass: np.ndarray
+    damping: np.ndarray
+    free: tuple = THREE_DOF
 
     def vector(self) -> np.ndarray:
         """The kernels' parameter vector, in the order of the ``P_*`` positions of ``_kernels``."""
-        from stabflow.dynamics import _kernels as K
-
         v = np.empty(K.N_PARAMETERS)
         for name in self.__dataclass_fields__:
-            v[getattr(K, f"P_{name.upper()}")] = getattr(self, name)
+            x = np.ravel(np.asarray(getattr(self, name), float))
+            i = getattr(K, f"P_{name.upper()}")
+            v[i:i + x.size] = x
         return v
 
 
-def parameters(co: Coefficients, rho: float, lcg: float, kg: float, heading_deg: float) -> np.ndarray:
-    """Parameter vector of the RK4 kernels (``_rhs``) for coefficients ``co``, loading (LCG, KG [m])
-    and wave heading [degree]."""
+def parameters(co: Coefficients, rho: float, lcg: float, kg: float, heading_deg: float,
+               free=THREE_DOF) -> np.ndarray:
+    """Parameter vector of the RK4 kernels (``_rhs``) for coefficients ``co``, loading (LCG, KG [m]),
+    wave heading [degree] and the free coordinates (default: the 3-DOF heave, roll, pitch)."""
     b = np.radians(heading_deg)
-    return ModelParameters(rho=rho, g=G, xg=lcg, zg=kg, mass=co.mass, m33=co.mass + co.a33, m44=co.i44 + co.a44,
-                           m55=co.i55 + co.a55, b33=co.b33, b44=co.b44, b44q=co.b44q, b55=co.b55, cos_beta=np.cos(b),
-                           sin_beta=np.sin(b)).vector()
+    return ModelParameters(rho=rho, g=G, xg=lcg, zg=kg, mass=co.mass, b44q=co.b44q, cos_beta=np.cos(b),
+                           sin_beta=np.sin(b), inertia=co.inertia_tensor(), added_mass=co.added_mass_matrix(),
+                           damping=co.damping_matrix(), free=tuple(free)).vector()
+
+
+def initial_state(sec: Sections, st: xr.Dataset, phi0_deg: float = 0.0) -> np.ndarray:
+    """State (N_STATE,) at rest in the free-floating calm-water equilibrium at heel ``phi0_deg``
+    [degree] (heave and trim balanced at that heel, as a model heeled by a moment and released)."""
+    V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
+    phi0 = np.radians(phi0_deg)
+    h0, th0, _ = equilibrium(sec, V, lcg, kg)
+    h, th = (h0, th0) if phi0 == 0.0 else equilibrium(sec, V, lcg, kg, heel=phi0, guess=(h0, th0))[:2]
+    s = np.zeros(K.N_STATE)
+    # G's height from the origin's: z_G = h - sin(theta) x_G + cos(theta) cos(phi) z_G,body
+    s[K.S_Z] = h - np.sin(th) * lcg + np.cos(th) * np.cos(phi0) * kg
+    s[K.S_ROLL] = phi0
+    s[K.S_PITCH] = th
+    return s
 
 
 def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves, heading_deg: float,
@@ -218,12 +247,14 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
 
     Returns
     -------
-    xarray.Dataset along ``time`` [s]: heave [m] and heave rate [m/s], roll and pitch [degree] and
+    xarray.Dataset along ``time`` [s]: heave of G [m] and its rate [m/s], roll and pitch [degree] and
     their rates [degree/s] (angles in degrees like every stabflow output), FK+HS loads; attributes
     ``capsized`` (0/1) and ``capsize_time`` [s] (record stops at the capsize angle, never NaN).
     """
-    V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
-    h0, th0, _ = equilibrium(sec, V, lcg, kg)
+    lcg, kg = float(st["lcg"]), float(st["kg"])
+    rest = initial_state(sec, st)
+    th0 = rest[K.S_PITCH]
+    h0 = K._origin_height(rest[K.S_Z], 0.0, th0, lcg, kg)
     nsteps = int(round(duration / dt))
     t_half = np.arange(2 * nsteps + 1) * 0.5 * dt
     depth = section_depths(sec, h0, th0) if dphi_dzdt else None
@@ -233,17 +264,19 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     else:
         wtab = np.zeros((len(t_half), len(sec.x), 2))
     p = parameters(co, rho, lcg, kg, heading_deg)
-    s0 = np.array([h0, np.radians(phi0_deg), th0, 0.0, 0.0, 0.0])
-    out = np.empty((nsteps + 1, 6))
+    s0 = rest if phi0_deg == 0.0 else initial_state(sec, st, phi0_deg)
+    out = np.empty((nsteps + 1, K.N_STATE))
     forces = np.empty((nsteps + 1, 6))
     done = _simulate(*kernel_args(sec, tables), p, wtab, dt, 0, nsteps, s0, np.radians(phi_cap_deg), out, forces)
     n = done + 1
     t = np.arange(n) * dt
+    r = K.S_RATE
     ds = xr.Dataset(
         {
-            "heave": ("time", out[:n, 0] - h0), "roll": ("time", np.degrees(out[:n, 1])),
-            "pitch": ("time", np.degrees(out[:n, 2] - th0)), "heave_rate": ("time", out[:n, 3]),
-            "roll_rate": ("time", np.degrees(out[:n, 4])), "pitch_rate": ("time", np.degrees(out[:n, 5])),
+            "heave": ("time", out[:n, K.S_Z] - rest[K.S_Z]), "roll": ("time", np.degrees(out[:n, K.S_ROLL])),
+            "pitch": ("time", np.degrees(out[:n, K.S_PITCH] - th0)), "heave_rate": ("time", out[:n, r + K.S_Z]),
+            "roll_rate": ("time", np.degrees(out[:n, r + K.S_ROLL])),
+            "pitch_rate": ("time", np.degrees(out[:n, r + K.S_PITCH])),
             "fz": ("time", forces[:n, 2]), "mx": ("time", forces[:n, 3]), "my": ("time", forces[:n, 4]),
             "mz": ("time", forces[:n, 5]),
         },

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from stabflow.dynamics import _kernels as K
 from stabflow.geometry.frames import earth_vertices
 from stabflow.constants import G
 
@@ -59,24 +60,22 @@ class PressureModel:
         return np.concatenate([F.sum(axis=0), M.sum(axis=0)])
 
 
-def simulate_pressure(model: PressureModel, co, h0, th0, duration, dt, phi0=0.0):
-    """Same 3-DOF equations as ``simulate`` with pressure-integrated loads (Python RK4).
-
-    Returns (t, states (n, 6)) with heave and pitch relative to (h0, th0).
-    """
-    g = G
-    m33 = co.mass + co.a33
-    m44 = co.i44 + co.a44
-    m55 = co.i55 + co.a55
+def simulate_pressure(model: PressureModel, p: np.ndarray, s0: np.ndarray, duration: float, dt: float):
+    """The time domain's equations (:mod:`stabflow.dynamics.rigid_body`, parameter vector ``p``
+    of :func:`stabflow.dynamics.model.parameters`) with pressure-integrated loads, Python RK4 from
+    the state ``s0`` (N_STATE,). Returns (t [s], states (n, N_STATE))."""
+    acc = np.empty(6)
+    mq, r = np.empty((6, 6)), np.empty(6)
 
     def rhs(t, s):
-        f = model.loads(t, s[0], s[1], s[2])
-        return np.array([s[3], s[4], s[5], (f[2] - co.mass * g - co.b33 * s[3]) / m33,
-                         (f[3] - co.b44 * s[4] - co.b44q * s[4] * abs(s[4])) / m44, (f[4] - co.b55 * s[5]) / m55])
+        h = K._origin_height(s[K.S_Z], s[K.S_ROLL], s[K.S_PITCH], model.xg, model.zg)
+        f = model.loads(t, h, s[K.S_ROLL], s[K.S_PITCH])
+        K._accelerations(p, s, f, acc, mq, r)
+        return np.concatenate([s[K.S_RATE:], acc])
 
     n = int(round(duration / dt))
-    s = np.array([h0, phi0, th0, 0.0, 0.0, 0.0])
-    out = np.empty((n + 1, 6))
+    s = np.asarray(s0, float).copy()
+    out = np.empty((n + 1, K.N_STATE))
     out[0] = s
     for j in range(n):
         t = j * dt
@@ -86,8 +85,6 @@ def simulate_pressure(model: PressureModel, co, h0, th0, duration, dt, phi0=0.0)
         k4 = rhs(t + dt, s + dt * k3)
         s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         out[j + 1] = s
-    out[:, 0] -= h0
-    out[:, 2] -= th0
     return np.arange(n + 1) * dt, out
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from stabflow.dynamics._kernels import S_ROLL
 from stabflow.plots._style import atomic_savefig, plt
 
 
@@ -23,7 +24,7 @@ def splittime_figures(model, ds: xr.Dataset, paths: dict, title: str = ""):
     states, last = simulate_record(model, r)
     t = np.arange(last + 1) * model.dt
     fig, ax = plt.subplots(figsize=(9, 3.6))
-    ax.plot(t, np.degrees(states[: last + 1, 1]), lw=0.8)
+    ax.plot(t, np.degrees(states[: last + 1, S_ROLL]), lw=0.8)
     m = ev["crossing_record"].values.astype(int) == r
     ax.plot(ev["crossing_time"].values[m], thr0 * ev["crossing_side"].values[m], "ro", ms=4, label="crossings")
     for s in (1, -1):

@@ -23,8 +23,8 @@ import xarray as xr
 
 from stabflow.config import Ship
 from stabflow.dynamics import coefficients
-from stabflow.dynamics._kernels import _simulate, _simulate_batch
-from stabflow.dynamics.model import parameters, section_depths
+from stabflow.dynamics._kernels import N_STATE, S_PITCH, S_RATE, S_ROLL, S_Z, _simulate, _simulate_batch
+from stabflow.dynamics.model import initial_state, parameters, section_depths
 from stabflow.dynamics.tables import SectionTables, kernel_args, section_tables
 from stabflow.constants import KNOT
 from stabflow.geometry import Sections, build_hull
@@ -85,8 +85,8 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
     depth = section_depths(sec, h0, th0) if cond.get("dphi_dzdt", False) else None
     tables = section_tables(sec, int(cond.get("table_angles", 181)), int(cond.get("table_levels", 101)))
     p = parameters(co, s.rho, float(st["lcg"]), float(st["kg"]), float(cond["heading_deg"]))
-    return Model(s, cond, Seaway.from_config(cond["sea"]), sec, st, tables, p,
-                 np.array([h0, 0.0, th0, 0.0, 0.0, 0.0]), depth, co.natural_period("roll"))
+    return Model(s, cond, Seaway.from_config(cond["sea"]), sec, st, tables, p, initial_state(sec, st), depth,
+                 co.natural_period("roll"))
 
 
 def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
@@ -100,11 +100,11 @@ def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
 def simulate_record(model: Model, record: int, s_start=None, n_start: int = 0, n_end: int | None = None,
                     phi_cap_deg: float = 90.0, wtab=None):
     """Regenerate record ``record`` (optionally from state ``s_start`` at step ``n_start`` up to step
-    ``n_end``). Returns (states (nsteps + 1, 6) — rows before ``n_start`` unset — and the last step
+    ``n_end``). Returns (states (nsteps + 1, N_STATE) — rows before ``n_start`` unset — and the last step
     done). Bit-identical to the same steps of the ensemble run."""
     wtab = wave_table(model, record) if wtab is None else wtab
     n_end = model.nsteps if n_end is None else n_end
-    out = np.empty((model.nsteps + 1, 6))
+    out = np.empty((model.nsteps + 1, N_STATE))
     s0 = model.s0 if s_start is None else np.asarray(s_start, float)
     last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, n_start, n_end, s0,
                      np.radians(phi_cap_deg), out, np.empty((0, 6)))
@@ -123,14 +123,14 @@ def bins(cond: dict) -> dict[str, np.ndarray]:
 
 
 def record_statistics(model: Model, record: int, states: np.ndarray, last: int, wave_mid: np.ndarray) -> dict:
-    """Everything kept from one record (``states`` (nsteps + 1, 6), valid up to ``last``)."""
+    """Everything kept from one record (``states`` (nsteps + 1, N_STATE), valid up to ``last``)."""
     cond = model.cond
     n = last + 1
     t = np.arange(n) * model.dt
-    h = states[:n, 0] - model.s0[0]
-    roll = np.degrees(states[:n, 1])
-    pitch = np.degrees(states[:n, 2] - model.s0[2])
-    rate = np.degrees(states[:n, 4])
+    h = states[:n, S_Z] - model.s0[S_Z]
+    roll = np.degrees(states[:n, S_ROLL])
+    pitch = np.degrees(states[:n, S_PITCH] - model.s0[S_PITCH])
+    rate = np.degrees(states[:n, S_RATE + S_ROLL])
     series = {"heave": h, "roll": roll, "pitch": pitch}
     out = {"steps": last, "capsized": int(last < model.nsteps),
            "capsize_time": float(t[-1]) if last < model.nsteps else np.nan,
@@ -185,7 +185,7 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
     for b0 in range(0, len(recs), BATCH):
         batch = recs[b0: b0 + BATCH]
         tabs = np.stack([wave_table(model, r) for r in batch])
-        out = np.empty((len(batch), model.nsteps + 1, 6))
+        out = np.empty((len(batch), model.nsteps + 1, N_STATE))
         last = np.empty(len(batch), np.int64)
         _simulate_batch(*args, model.p, tabs, model.dt, model.nsteps, model.s0, np.radians(90.0), out, last)
         for q, r in enumerate(batch):
@@ -250,10 +250,10 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
             st, last, wm = samples[r]
             m = last + 1
             arr[q, 0, :m] = wm[:m]
-            arr[q, 1, :m] = st[:m, 0] - model.s0[0]
-            arr[q, 2, :m] = np.degrees(st[:m, 1])
-            arr[q, 3, :m] = np.degrees(st[:m, 2] - model.s0[2])
-            arr[q, 4, :m] = np.degrees(st[:m, 4])
+            arr[q, 1, :m] = st[:m, S_Z] - model.s0[S_Z]
+            arr[q, 2, :m] = np.degrees(st[:m, S_ROLL])
+            arr[q, 3, :m] = np.degrees(st[:m, S_PITCH] - model.s0[S_PITCH])
+            arr[q, 4, :m] = np.degrees(st[:m, S_RATE + S_ROLL])
         for j, name in enumerate(["sample_wave", "sample_heave", "sample_roll", "sample_pitch", "sample_roll_rate"]):
             ds[name] = (("sample", "time"), arr[:, j])
         ds = ds.assign_coords(sample=np.array(keys, np.int64), time=np.arange(n) * model.dt)

@@ -34,7 +34,7 @@ import numpy as np
 import xarray as xr
 from scipy import stats
 
-from stabflow.dynamics._kernels import _simulate
+from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
 from stabflow.dynamics.tables import kernel_args
 from stabflow.statistics.ensemble import Model, simulate_record, wave_table
 from stabflow.statistics.extremes import decluster, gpd_mle
@@ -101,7 +101,7 @@ def critical_perturbations(model: Model, records, steps, sides, window: int, dma
         idx = np.nonzero(records == r)[0]
         wtab = wave_table(model, int(r))
         states, _ = simulate_record(model, int(r), wtab=wtab)
-        buf = np.empty((model.nsteps + 1, 6))
+        buf = np.empty((model.nsteps + 1, N_STATE))
         for c in idx:
             n0 = int(steps[c])
             n1 = min(n0 + window, model.nsteps)
@@ -109,9 +109,9 @@ def critical_perturbations(model: Model, records, steps, sides, window: int, dma
 
             def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c]):
                 s = s0.copy()
-                s[4] += side * np.radians(d)
+                s[S_RATE + S_ROLL] += side * np.radians(d)
                 last = _simulate(*args, model.p, wtab, model.dt, n0, n1, s, cap, buf, nofo)
-                return last < n1 or abs(buf[last, 1]) > cap
+                return last < n1 or abs(buf[last, S_ROLL]) > cap
 
             delta[c], runs[c] = bisect_critical(capsizes, dmax_deg, tol_deg)
         return len(idx)
@@ -245,12 +245,12 @@ def perturbed_histories(model: Model, record: int, step: int, side: int, deltas,
     runs = []
     for d in deltas:
         s = states[step].copy()
-        s[4] += side * np.radians(d)
-        buf = np.full((model.nsteps + 1, 6), np.nan)
+        s[S_RATE + S_ROLL] += side * np.radians(d)
+        buf = np.full((model.nsteps + 1, N_STATE), np.nan)
         _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, step, n1, s, np.radians(90.0),
                         buf, np.empty((0, 6)))
-        runs.append(np.degrees(buf[step: n1 + 1, 1]))
+        runs.append(np.degrees(buf[step: n1 + 1, S_ROLL]))
     base = np.full(len(t), np.nan)
     m = min(last, n1)
-    base[: m - step + 1] = np.degrees(states[step: m + 1, 1])
+    base[: m - step + 1] = np.degrees(states[step: m + 1, S_ROLL])
     return t, base, runs

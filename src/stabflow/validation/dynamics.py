@@ -89,6 +89,8 @@ from stabflow.dynamics import Coefficients, coefficients, simulate
 from stabflow.dynamics._kernels import _fkhs
 from stabflow.dynamics.linear import fk_excitation, linear_response, stiffness_matrix
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
+from stabflow.dynamics.model import initial_state, parameters
+from stabflow.dynamics._kernels import S_PITCH, S_ROLL, S_Z
 from stabflow.dynamics.rao import first_harmonic, rao_sweep
 from stabflow.dynamics.tables import kernel_args
 from stabflow.geometry import Sections
@@ -317,13 +319,14 @@ def pressure_record(mesh, sec: Sections, st: xr.Dataset, co: Coefficients, rho: 
                     decay: bool, duration: float = PRESSURE_DURATION, dt: float = PRESSURE_DT) -> tuple[np.ndarray, np.ndarray]:
     """The same 3-DOF equations with surface-pressure-integrated loads on ``mesh`` (vertices, faces),
     from the sections' calm-water equilibrium: (t [s], states (n, 3)), heave [m], roll, pitch [rad]."""
-    V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
-    h0, th0, _ = equilibrium(sec, V, lcg, kg)
+    lcg, kg = float(st["lcg"]), float(st["kg"])
+    s0 = initial_state(sec, st)
     pm = PressureModel(mesh[0], mesh[1], rho, lcg, kg, waves, heading_deg, 0.0, decay=decay)
-    t, s = simulate_pressure(pm, co, h0, th0, duration, dt)
+    t, s = simulate_pressure(pm, parameters(co, rho, lcg, kg, heading_deg), s0, duration, dt)
     if not np.all(np.isfinite(s)):
         raise FloatingPointError("pressure-integration record is not finite")
-    return t, s[:, :3]
+    x = s[:, [S_Z, S_ROLL, S_PITCH]] - s0[[S_Z, S_ROLL, S_PITCH]]
+    return t, x
 
 
 def half_range(t: np.ndarray, x: np.ndarray, start: float = PRESSURE_FROM) -> np.ndarray:
@@ -445,8 +448,8 @@ def long_wave_limit(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float,
     """Very long head waves: heave / a and pitch / (k a) of :func:`stabflow.dynamics.rao.rao_sweep` vs
     the long-wave limit of the same equations.
 
-    In the limit the ship follows the wave surface, X_qs = (eta, 0, -eta_x) at x = 0 (heave of
-    the body origin and pitch, bow down positive), which the hydrostatic restoring turns into the
+    In the limit the ship follows the wave surface, X_qs = (eta + x_G eta_x, 0, -eta_x) with eta,
+    eta_x at x = 0 (heave of G and pitch, bow down positive), which the hydrostatic restoring turns into the
     excitation F = C X_qs; the reference is ``|[-w^2 M + i w B + C]^-1 C X_qs|`` with C from
     :func:`stabflow.dynamics.linear.stiffness_matrix`. Without heave-pitch coupling (C35 = C53 = 0,
     a fore-aft symmetric hull) this is the 1-DOF amplification ``1 / |1 - w^2 m / c + i w b / c|``
@@ -470,7 +473,9 @@ def long_wave_limit(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float,
     t = np.arange(64) * (2 * np.pi / we) / 64
     tab = station_wave_table(*W, np.array([0.0]), 180.0, 0.0, t)[:, 0, :]
     qs = np.zeros(3, complex)
-    for j, x in ((0, tab[:, 0]), (2, tab[:, 1])):  # heave = eta, pitch = -eta_x = S for head seas
+    lcg = float(st["lcg"])
+    # heave of G = eta + x_G eta_x, pitch = -eta_x, with eta_x = cos(beta) S = -S for head seas
+    for j, x in ((0, tab[:, 0] - lcg * tab[:, 1]), (2, tab[:, 1])):
         amp, ph = first_harmonic(t, x, we)
         qs[j] = amp * np.exp(1j * ph)
     V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
