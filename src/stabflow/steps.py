@@ -125,7 +125,7 @@ def run_early_stage_summary(metric_ncs, out_csv, out_png):
 
 def run_hydro(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc) -> xr.Dataset:
     """hydro step: Capytaine coefficients at the natural frequencies and linear peer RAOs → NetCDF."""
-    from stabflow.dynamics import coefficients
+    from stabflow.dynamics.model import config_coefficients
     from stabflow.dynamics.hydro import bem_mesh, hydro_dataset
     from stabflow.dynamics.linear import stiffness_matrix
     from stabflow.dynamics.model import equilibrium
@@ -135,7 +135,7 @@ def run_hydro(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out
     ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
     cond = {c["name"]: c for c in rao_cfg["conditions"]}[condition]
     sec = Sections(hull)
-    co = coefficients(ship, sec, st)
+    co = config_coefficients(ship, sec, st)
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
     C = stiffness_matrix(sec, ship.rho, float(st["lcg"]), float(st["kg"]), h0, th0)
     ds = hydro_dataset(bem_mesh(ship), st, co, ship.rho, cond["heading"], float(st["lwl"]), rao_cfg["wavelength_ratios"], C, h0, th0)
@@ -160,12 +160,13 @@ def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_n
     cond = {c["name"]: c for c in rao_cfg["conditions"]}[condition]
     sec = Sections(hull)
     hydro = _open_optional(hydro_nc)
-    co = coefficients(ship, sec, st, hydro if ship.data["dynamics"]["hydro"] == "capytaine" else None)
+    co = coefficients(ship, sec, st, hydro if ship.data["dynamics"]["hydro"] == "capytaine" else None,
+                      speed=cond["speed_kn"] * KNOT)
     ds = rao_sweep(sec, st, co, ship.rho, float(st["lwl"]), rao_cfg["wavelength_ratios"], rao_cfg["steepness"],
                    cond["heading"], cond["speed_kn"] * KNOT, rao_cfg["dt"])
     ds.attrs.update(ship=ship.name, condition=condition, roll_period=co.natural_period("roll"),
                     heave_period=co.natural_period("heave"), pitch_period=co.natural_period("pitch"),
-                    hydro=ship.data["dynamics"]["hydro"])
+                    hydro=ship.data["dynamics"]["hydro"], roll_damping=co.roll_damping, b44=co.b44, b44q=co.b44q)
     if fig:
         rao_curves(ds, fig, peer=hydro, title=f"{ship.name}, {condition}: heading {cond['heading']:g}°, {cond['speed_kn']:g} kn, "
                    f"H/λ = {rao_cfg['steepness']:g}")

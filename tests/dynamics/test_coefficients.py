@@ -138,12 +138,13 @@ def test_both_given_is_an_error_in_coefficients(barge, absolute, fraction, va, v
 
 def test_every_dynamics_key_documented():
     props = schema("ship")["properties"]["dynamics"]["properties"]
+    paired = {k for a, f, _, _ in PAIRS for k in (a, f)}
     for key, sub in props.items():
-        if key == "hydro":
-            continue
         d = sub["description"]
-        assert "[" in d and "]" in d, f"{key}: no unit"
-        assert "default" not in sub, f"{key}: a schema default would hide a both-given config"
+        if sub.get("type") == "number":
+            assert "[" in d and "]" in d, f"{key}: no unit"
+        if key in paired:
+            assert "default" not in sub, f"{key}: a schema default would hide a both-given config"
     for a, f, _, _ in PAIRS:
         assert a in props and f in props
         assert "Default (neither given)" in props[f]["description"]
@@ -178,9 +179,13 @@ def shipped(request):
 
 def test_shipped_ships_keep_the_default_coefficients(shipped):
     ship, sec, st = shipped
+    if ship.data["dynamics"]["roll_damping"] == "ikeda":  # dtmb5415: roll damping tested below
+        ship = ship.modified(dynamics={"roll_damping": "coefficients"})
     co = coefficients(ship, sec, st)
     m, L, B = float(st["mass"]), float(st["lwl"]), float(st["bwl"])
-    assert set(ship.data["dynamics"]) == {"hydro"}  # nothing given: every default applies
+    # no coefficient given: every default applies
+    assert set(ship.data["dynamics"]) == {"hydro", "roll_damping", "ikeda_amplitude_deg", "ikeda_normal_force",
+                                          "decay_heel_deg"}
     assert co.mass == m
     assert co.i44 == m * (0.40 * B) ** 2 and co.i55 == m * (0.25 * L) ** 2 and co.i66 == m * (0.25 * L) ** 2
     assert co.a33 == 1.0 * m and co.a44 == 0.2 * co.i44 and co.a55 == 1.0 * co.i55
@@ -195,3 +200,45 @@ def test_shipped_ships_keep_the_default_coefficients(shipped):
     assert (ch.b33, ch.b55) == (float(hy.damping_heave), float(hy.damping_pitch))
     assert ch.b44 == float(hy.damping_roll) + 2 * 0.05 * np.sqrt((co.i44 + float(hy.added_roll)) * co.c44)
     assert ch.b44q == 0.0 and (ch.i44, ch.i55, ch.c44) == (co.i44, co.i55, co.c44)
+
+
+# --- roll damping from the hull (dynamics.roll_damping: ikeda) ------------------------------------
+
+def test_ikeda_roll_damping_coefficients(barge, ship_file):
+    """roll_damping: ikeda with Capytaine: B44 = Ikeda's linear part (friction, lifts) + the
+    radiation damping, B44q = the quadratic part at ikeda_amplitude_deg, and the table of B44q
+    against the running amplitude for the time domain; errors name the file and field."""
+    from stabflow.dynamics import _kernels as K
+    from stabflow.dynamics.roll_damping import linear_quadratic
+
+    _, sec, st, _ = barge
+    keels = {"span": 0.5, "length": 40.0, "x_start": -20.0, "x_end": 20.0}
+    p = ship_file("barge", dynamics={"hydro": "capytaine", "roll_damping": "ikeda", "ikeda_amplitude_deg": 15.0},
+                  bilge_keels=keels)
+    ship = load_ship(p)
+    hy = fake_hydro(float(st["mass"]))
+    co = coefficients(ship, sec, st, hy, speed=3.0)
+    omega = np.sqrt(co.c44 / (co.i44 + co.a44))
+    ref = linear_quadratic(sec, st, omega=omega, roll_amplitude_deg=15.0, speed=3.0, bilge_keels=keels,
+                           wave=float(hy.damping_roll), rho=ship.rho)
+    assert co.roll_damping == "ikeda"
+    assert co.b44 == pytest.approx(float(ref.b1), rel=1e-12) and co.b44 > float(hy.damping_roll)
+    assert co.b44q == pytest.approx(float(ref.b2), rel=1e-12) and co.b44q > 0
+    grid = np.degrees(np.arange(K.N_AMPLITUDES) * K.AMPLITUDE_STEP)
+    assert co.b44q_table.shape == grid.shape and np.all(co.b44q_table >= 0)
+    j = int(np.argmin(np.abs(grid - 16.0)))
+    at = linear_quadratic(sec, st, omega=omega, roll_amplitude_deg=grid[j], speed=3.0, bilge_keels=keels,
+                          wave=float(hy.damping_roll), rho=ship.rho)
+    assert co.b44q_table[j] == pytest.approx(float(at.b2), rel=1e-12)
+    # Capytaine is needed for the wave part; config roll damping cannot be given as well
+    with pytest.raises(StabflowError, match="roll_damping: ikeda needs dynamics.hydro: capytaine"):
+        coefficients(ship, sec, st)
+    with pytest.raises(StabflowError, match=r"dynamics.b44: roll damping is computed"):
+        coefficients(ship.modified(dynamics={"b44": 1e6}), sec, st, hy)
+    with pytest.raises(StabflowError, match="bilge_keels"):
+        bad = load_ship(ship_file("barge", dynamics={"hydro": "capytaine", "roll_damping": "ikeda"},
+                                  bilge_keels={"span": 0.5, "length": 10.0, "x_start": 0.0, "x_end": 20.0}))
+        coefficients(bad, sec, st, hy)
+    # the schema: ikeda without capytaine is rejected at load, naming the file
+    with pytest.raises(StabflowError, match="barge.yaml"):
+        load_ship(ship_file("barge", dynamics={"roll_damping": "ikeda"}))

@@ -7,7 +7,7 @@ import trimesh
 from stabflow.config import load_ship
 from stabflow.dynamics import coefficients, simulate
 from stabflow.dynamics import _kernels as K
-from stabflow.dynamics.model import initial_state, parameters
+from stabflow.dynamics.model import config_coefficients, initial_state, parameters
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
 from stabflow.geometry import Sections, build_hull
 from stabflow.hydrostatics.statics import compute_statics, equilibrium
@@ -24,7 +24,7 @@ def test_calm_water_rest(name):
     hull = build_hull(ship)
     st = compute_statics(ship, hull)
     sec = Sections(hull)
-    ds = simulate(sec, st, coefficients(ship, sec, st), ship.rho, CALM, 0.0, 0.0, 600.0, 0.1)
+    ds = simulate(sec, st, config_coefficients(ship, sec, st), ship.rho, CALM, 0.0, 0.0, 600.0, 0.1)
     assert np.abs(ds["heave"]).max() < 1e-6
     assert np.abs(ds["roll"]).max() < 1e-6
     assert np.abs(ds["pitch"]).max() < 1e-6

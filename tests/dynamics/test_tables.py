@@ -23,6 +23,7 @@ def dtmb21():
     d = copy.deepcopy(base.data)
     d["hull"]["stations"] = 21
     d["dynamics"]["hydro"] = "config"
+    d["dynamics"]["roll_damping"] = "coefficients"
     ship = Ship(base.name, base.path, d)
     hull = build_hull(ship)
     st = compute_statics(ship, hull)

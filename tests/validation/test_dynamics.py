@@ -17,6 +17,8 @@ PRESSURE_ROWS = (
     + [f"{SMALL} (pressure-integrated FK): {v}, largest over lambda/L = 1-3" for v in vd.DOFS]
     + [f"d2phi/dzdt option, lambda = L, H/lambda = 1/50: {v} vs pressure integration with decay" for v in ("heave", "pitch")]
 )
+IKEDA_ROWS = [f"Ikeda roll damping, viscous sum at {vd.IKEDA_AMPLITUDE:g} deg, Fn {fn:g}: component / simplified method"
+              for fn in vd.IKEDA_FROUDE]
 #: every row, in order, with its kind
 EXPECTED = (
     [("roll decay: period vs damped natural period", "independent"),
@@ -29,6 +31,7 @@ EXPECTED = (
     + [("long head waves: heave / a vs long-wave limit", "consistency"),
        ("long head waves: pitch / (k a) vs long-wave limit", "consistency"),
        ("long head waves: roll / (k a)", "consistency")]
+    + [(n, "independent") for n in IKEDA_ROWS]
 )
 
 
@@ -51,6 +54,9 @@ def wigley():
 def test_barge_every_row_present_and_passes(barge_rows):
     assert [(r.check, r.kind) for r in barge_rows.values()] == EXPECTED
     for r in barge_rows.values():
+        if r.check in IKEDA_ROWS:  # the barge's roll damping is the config's
+            assert r.status == "SKIPPED" and "dynamics.roll_damping" in r.reason
+            continue
         assert r.status == "PASS", (r.check, r.value, r.criterion, r.reason)
         assert r.reason == ""
     # the measured numbers behind the tolerances (module docstring)
@@ -65,7 +71,7 @@ def test_barge_every_row_present_and_passes(barge_rows):
     dphi = rows[PRESSURE_ROWS[6]]
     assert "without the option +51" in dphi.reference
     ds = checks_dataset("barge", "dynamics", list(rows.values()))
-    assert (ds["status"].values == "PASS").all() and ds.sizes["check"] == len(EXPECTED)
+    assert (ds["status"].values != "FAIL").all() and ds.sizes["check"] == len(EXPECTED)
 
 
 def test_wigley_skips_pressure_rows_with_reason(wigley):
@@ -75,6 +81,8 @@ def test_wigley_skips_pressure_rows_with_reason(wigley):
         if r.check in PRESSURE_ROWS:
             assert r.status == "SKIPPED"
             assert "'wigley'" in r.reason and "mesh" in r.reason
+        elif r.check in IKEDA_ROWS:
+            assert r.status == "SKIPPED"
         else:
             assert r.status == "PASS", (r.check, r.value, r.reason)
 
@@ -93,12 +101,14 @@ def test_broken_coefficients_give_fail_rows_not_an_exception(monkeypatch, wigley
     def broken(*args, **kwargs):
         raise RuntimeError("broken coefficients")
 
-    monkeypatch.setattr(vd, "coefficients", broken)
+    monkeypatch.setattr(vd, "config_coefficients", broken)
     rows = vd.dynamics_checks(*wigley)
     assert [(r.check, r.kind) for r in rows] == EXPECTED
     for r in rows:
         if r.check in PRESSURE_ROWS:  # does not apply, whatever else fails
             assert r.status == "SKIPPED" and "mesh" in r.reason
+        elif r.check in IKEDA_ROWS:
+            assert r.status == "SKIPPED" and "dynamics.roll_damping" in r.reason
         else:
             assert r.status == "FAIL"
             assert r.reason == "RuntimeError: broken coefficients"
@@ -111,7 +121,7 @@ def test_broken_simulation_on_barge_fails_rows_fast(monkeypatch):
     monkeypatch.setattr(vd, "simulate", broken)
     rows = {r.check: r for r in vd.dynamics_checks(*inputs("barge"))}
     assert list(rows) == [n for n, _ in EXPECTED]
-    depends = [n for n, _ in EXPECTED if not n.startswith("long head waves")]
+    depends = [n for n, _ in EXPECTED if not n.startswith("long head waves") and n not in IKEDA_ROWS]
     for n in depends:
         assert rows[n].status == "FAIL" and rows[n].reason == "FloatingPointError: diverged", n
         assert np.isnan(rows[n].value)
@@ -131,3 +141,18 @@ def test_peaks_of_a_damped_oscillation():
     tp, xp = vd.peaks(t, np.exp(-s * t) * np.cos(wd * t))
     assert np.diff(tp) == pytest.approx(7.0, rel=1e-4)
     assert np.log(xp[:-1] / xp[1:]) == pytest.approx(s * 7.0, rel=1e-3)
+
+
+def test_ikeda_vs_simplified_dtmb5415():
+    """DTMB 5415 (bare hull, roll_damping: ikeda): viscous component sum over the simplified method
+    at 10 deg. Measured 1.75 at Fn 0 (hull eddy making, 97 % of it from the sonar-dome stations,
+    which Ikeda's section model was not fitted to; the regression itself is outside its C_M range)
+    and 1.03 at Fn 0.2 (hull lift, the same formula in both, dominates)."""
+    from stabflow.dynamics.model import config_coefficients
+    from stabflow.geometry import Sections
+
+    ship, hull, st = inputs("dtmb5415")
+    sec = Sections(hull)
+    out = vd.ikeda_vs_simplified(ship, sec, st, config_coefficients(ship, sec, st))
+    assert out["ratio"] == pytest.approx([1.75, 1.03], abs=0.02)
+    assert "cm" in out["out_of_range"]

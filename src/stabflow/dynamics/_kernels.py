@@ -182,27 +182,35 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
     return vol
 
 
+#: quadratic roll damping B44q is tabulated against the running roll amplitude (LAMP's quasi-steady
+#: form, paper 004 eqs 17-19) at AMPLITUDE_STEP [rad] steps from 0 to 90 degrees; a constant
+#: table is the plain quadratic damping
+N_AMPLITUDES = 46
+AMPLITUDE_STEP = math.pi / 2.0 / (N_AMPLITUDES - 1)
+
 # positions in the parameter vector ``p`` of the RK4 kernels (built by
-# ``stabflow.dynamics.model.ModelParameters.vector``): scalars, then the 3x3 inertia tensor about G
-# in body axes, the 6x6 added-mass and linear damping matrices of the generalized coordinates and
-# the six free/held flags (all row-major)
+# ``stabflow.dynamics.model.ModelParameters.vector``): scalars, the B44q table, then the 3x3
+# inertia tensor about G in body axes, the 6x6 added-mass and linear damping matrices of the
+# generalized coordinates and the six free/held flags (all row-major)
 P_RHO = 0
 P_G = 1
 P_XG = 2
 P_ZG = 3
 P_MASS = 4
-P_B44Q = 5
-P_COS_BETA = 6
-P_SIN_BETA = 7
-P_INERTIA = 8
+P_COS_BETA = 5
+P_SIN_BETA = 6
+P_B44Q = 7
+P_INERTIA = P_B44Q + N_AMPLITUDES
 P_ADDED_MASS = P_INERTIA + 9
 P_DAMPING = P_ADDED_MASS + 36
 P_FREE = P_DAMPING + 36
 N_PARAMETERS = P_FREE + 6
 
 # the state: generalized coordinates q = (x, y, z of G in the earth frame moving with the mean
-# speed and course [m]; roll phi, pitch theta, yaw psi [rad], Euler angles of R = Rz Ry Rx) and
-# their rates q' at positions S_RATE + j
+# speed and course [m]; roll phi, pitch theta, yaw psi [rad], Euler angles of R = Rz Ry Rx), their
+# rates q' at positions S_RATE + j, and two memory states held constant within a step: the running
+# roll amplitude S_AMP (the largest |phi| between the last two zero crossings) and S_PEAK, the
+# largest |phi| since the last zero crossing [rad] (paper 004, procedure after eq 19)
 S_X = 0
 S_Y = 1
 S_Z = 2
@@ -210,7 +218,35 @@ S_ROLL = 3
 S_PITCH = 4
 S_YAW = 5
 S_RATE = 6
-N_STATE = 12
+S_AMP = 12
+S_PEAK = 13
+N_STATE = 14
+
+
+@njit(cache=True, inline="always")
+def _b44q(p, amp):
+    """Quadratic roll damping [N m s^2/rad^2] at the running roll amplitude ``amp`` [rad]: linear
+    interpolation in the table (held at its ends)."""
+    u = amp / AMPLITUDE_STEP
+    if u >= N_AMPLITUDES - 1:
+        return p[P_B44Q + N_AMPLITUDES - 1]
+    k = int(u)
+    r = u - k
+    b0 = p[P_B44Q + k]
+    return b0 + r * (p[P_B44Q + k + 1] - b0)
+
+
+@njit(cache=True)
+def _update_amplitude(prev_roll, s):
+    """After a completed step from roll ``prev_roll``: at a zero crossing of roll the running
+    amplitude becomes the largest |roll| since the previous crossing, else that largest value
+    grows (paper 004, procedure after eq 19)."""
+    a = abs(s[S_ROLL])
+    if (prev_roll > 0.0 and s[S_ROLL] <= 0.0) or (prev_roll < 0.0 and s[S_ROLL] >= 0.0):
+        s[S_AMP] = s[S_PEAK]
+        s[S_PEAK] = a
+    elif a > s[S_PEAK]:
+        s[S_PEAK] = a
 
 
 @njit(cache=True, inline="always")
@@ -229,7 +265,7 @@ def _generalized_system(p, s, f, mq, r):
     body axes, I w' + w x I w = M_b, with w = E(phi, theta) (phi', theta', psi') the body angular
     velocity of the ZYX Euler angles, projected on the generalized coordinates q (Kane's method:
     J^T of each equation, J = diag(1, 1, 1, E)); the added mass A and linear damping B act on q
-    (seakeeping axes, constant), and the quadratic roll damping on phi'. Fills ``mq`` (6, 6) =
+    (seakeeping axes, constant), and the quadratic roll damping B44q(running amplitude) on phi'. Fills ``mq`` (6, 6) =
     J^T M_RB J + A and ``r`` (6,) = J^T (tau - M_RB J' q' - (0, w x I w)) - B q'
     - B44q phi'|phi'| e_phi.
     """
@@ -295,7 +331,7 @@ def _generalized_system(p, s, f, mq, r):
         for j in range(6):
             acc += p[P_DAMPING + 6 * i + j] * s[S_RATE + j]
         r[i] -= acc
-    r[S_ROLL] -= p[P_B44Q] * pd * abs(pd)
+    r[S_ROLL] -= _b44q(p, s[S_AMP]) * pd * abs(pd)
 
 
 @njit(cache=True)
@@ -356,7 +392,9 @@ def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f, work, mq, r):
     _loads(xs, dx, ys, zs, npts, tab, lim, p, wave, s, f, work)
     for j in range(6):
         ds[j] = s[S_RATE + j]
-    _accelerations(p, s, f, ds[S_RATE:], mq, r)
+    _accelerations(p, s, f, ds[S_RATE:S_RATE + 6], mq, r)
+    ds[S_AMP] = 0.0
+    ds[S_PEAK] = 0.0
 
 
 @njit(cache=True, nogil=True)
@@ -399,8 +437,11 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
         for q in range(ns):
             tmp[q] = s[q] + dt * k3[q]
         _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], tmp, k4, f, work, mq, r)
+        prev = s[S_ROLL]
         for q in range(ns):
             s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
+        _update_amplitude(prev, s)
+        for q in range(ns):
             out[n + 1, q] = s[q]
         if keep:
             _loads(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], s, f, work)

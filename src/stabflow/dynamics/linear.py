@@ -22,7 +22,7 @@ def _rest_parameters(rho, xg, zg) -> np.ndarray:
     """Parameter vector for the generalized forces at rest: only rho, g and G matter there."""
     from stabflow.dynamics.model import ModelParameters
 
-    return ModelParameters(rho=rho, g=G, xg=xg, zg=zg, mass=0.0, b44q=0.0, cos_beta=1.0, sin_beta=0.0,
+    return ModelParameters(rho=rho, g=G, xg=xg, zg=zg, mass=0.0, b44q=np.zeros(K.N_AMPLITUDES), cos_beta=1.0, sin_beta=0.0,
                            inertia=np.zeros((3, 3)), added_mass=np.zeros((6, 6)), damping=np.zeros((6, 6))).vector()
 
 

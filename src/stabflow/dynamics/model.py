@@ -10,7 +10,7 @@ precomputed at the stations on the half-step grid.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import xarray as xr
@@ -47,6 +47,22 @@ class Coefficients:
     c44: float
     c55: float
     i66: float
+    #: B44q [N m s^2/rad^2] against the running roll amplitude on the kernels' grid (0 to 90 degree
+    #: in N_AMPLITUDES steps), from Ikeda's components (``dynamics.roll_damping: ikeda``); None:
+    #: the constant ``b44q``
+    b44q_table: np.ndarray | None = None
+    #: where the roll damping comes from: "coefficients" (config / Capytaine) or "ikeda"
+    roll_damping: str = "coefficients"
+
+    def b44q_profile(self) -> np.ndarray:
+        """B44q on the kernels' amplitude grid [N m s^2/rad^2] (constant unless Ikeda's)."""
+        if self.b44q_table is not None:
+            return np.asarray(self.b44q_table, float)
+        return np.full(K.N_AMPLITUDES, self.b44q)
+
+    def linear_roll(self) -> "Coefficients":
+        """The same coefficients without quadratic roll damping (small-amplitude comparisons)."""
+        return replace(self, b44q=0.0, b44q_table=None)
 
     def inertia_tensor(self) -> np.ndarray:
         """Inertia tensor about G in body axes (3, 3) [kg m^2] (principal axes assumed)."""
@@ -76,7 +92,8 @@ def stiffness(sec: Sections, rho, xg, zg, h0, th0) -> tuple[float, float, float]
     return float(C[0, 0]), float(C[1, 1]), float(C[2, 2])
 
 
-def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | None = None) -> Coefficients:
+def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | None = None,
+                 speed: float = 0.0) -> Coefficients:
     """Coefficients from the ship's ``dynamics`` config, or, with ``hydro`` (the Capytaine dataset
     of ``dynamics.hydro``), added mass and radiation damping at the natural frequencies plus the
     configured viscous roll damping.
@@ -88,12 +105,18 @@ def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | 
     kxx 0.40 B_wl, kyy = kzz 0.25 L_wl, A33/m 1.0, A44/I44 0.2, A55/I55 1.0, zeta 0.2 (heave,
     pitch) and 0.05 (roll), B44q/(I44+A44) 0.
 
+    With ``dynamics.roll_damping: ikeda`` the roll damping comes from the hull and its bilge keels
+    (:func:`ikeda_roll_damping`) at the ship ``speed`` [m/s]: B44 the linear part (friction, lifts,
+    Capytaine wave damping) and B44q the quadratic part at ``dynamics.ikeda_amplitude_deg``, with
+    the table of B44q against the running roll amplitude for the time domain.
+
     Raises
     ------
     StabflowError
         ``"<ship file>: dynamics.<a> and dynamics.<b>: give one, not both"`` when both forms of a
         quantity are given (the schema rejects this at load; overrides through
-        :meth:`Ship.modified` are checked here).
+        :meth:`Ship.modified` are checked here); Ikeda's damping without the Capytaine ``hydro``
+        dataset (the wave part) or with roll damping also given in the config.
     """
     from stabflow import StabflowError
 
@@ -133,6 +156,22 @@ def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | 
     def quadratic(m44):
         return float(d["b44q"]) if "b44q" in d else d.get("roll_damping_quadratic", 0.0) * m44
 
+    if d.get("roll_damping", "coefficients") == "ikeda":
+        given = [k for k in ("b44", "roll_damping_linear", "b44q", "roll_damping_quadratic") if k in d]
+        if given:
+            raise StabflowError(f"{ship.path}: dynamics.{given[0]}: roll damping is computed with roll_damping: ikeda; "
+                                "give one, not both")
+        if hydro is None:
+            raise StabflowError(f"{ship.path}: dynamics.roll_damping: ikeda needs dynamics.hydro: capytaine "
+                                "(the wave part of the roll damping is Capytaine's radiation damping)")
+        a44h = float(hydro["added_roll"])
+        b1, b2, table = ikeda_roll_damping(ship, sec, st, i44 + a44h, c44, float(hydro["damping_roll"]), speed)
+        return Coefficients(
+            mass=mass, a33=float(hydro["added_heave"]), i44=i44, a44=a44h, i55=i55,
+            a55=float(hydro["added_pitch"]), b33=float(hydro["damping_heave"]), b44=b1, b44q=b2,
+            b55=float(hydro["damping_pitch"]), c33=c33, c44=c44, c55=c55, i66=i66, b44q_table=table,
+            roll_damping="ikeda",
+        )
     if hydro is not None:
         a44h = float(hydro["added_roll"])
         bv = damping("b44", "roll_damping_linear", 0.05, i44 + a44h, c44)  # viscous part
@@ -149,6 +188,42 @@ def coefficients(ship: Ship, sec: Sections, st: xr.Dataset, hydro: xr.Dataset | 
         b55=damping("b55", "damping_pitch", 0.2, i55 + a55, c55),
         c33=c33, c44=c44, c55=c55, i66=i66,
     )
+
+
+def config_coefficients(ship: Ship, sec: Sections, st: xr.Dataset) -> Coefficients:
+    """:func:`coefficients` from the config alone: no Capytaine dataset, and the roll damping of the
+    config keys (their defaults) even where the ship selects ``roll_damping: ikeda`` (the natural
+    frequencies for the BEM run, and the equation checks of the validation)."""
+    return coefficients(ship.modified(dynamics={"roll_damping": "coefficients"}), sec, st)
+
+
+def ikeda_roll_damping(ship: Ship, sec: Sections, st: xr.Dataset, m44: float, c44: float, wave: float,
+                       speed: float) -> tuple[float, float, np.ndarray]:
+    """Roll damping from Ikeda's components (:mod:`stabflow.dynamics.roll_damping`, paper 004
+    section 2.2) at the undamped natural roll frequency sqrt(C44 / (I44 + A44)) (``m44`` [kg m^2],
+    ``c44`` [N m/rad]), ship ``speed`` [m/s], the ship's ``bilge_keels`` and the radiation
+    damping ``wave`` [N m s/rad]: (B1 [N m s/rad], B2 [N m s^2/rad^2] at
+    ``dynamics.ikeda_amplitude_deg``, B2 on the kernels' running-amplitude grid). The table's
+    zero-amplitude entry takes the value at 1 degree (the components are defined for phi_a > 0)."""
+    from stabflow.dynamics.roll_damping import equivalent_damping_table, section_parameters
+
+    from stabflow import StabflowError
+    from stabflow.dynamics.roll_damping import BilgeKeels
+
+    d = ship.data["dynamics"]
+    keels = ship.data.get("bilge_keels")
+    try:
+        keels = None if keels is None else BilgeKeels.from_config(keels)
+    except (ValueError, TypeError, KeyError) as e:
+        raise StabflowError(f"{ship.path}: bilge_keels: {e}") from None
+    omega = float(np.sqrt(c44 / m44))
+    sp = section_parameters(sec, st)
+    kw = dict(omega=omega, speed=speed, bilge_keels=keels, wave=wave, rho=ship.rho,
+              normal_force=d.get("ikeda_normal_force", "kato"))
+    grid = np.degrees(np.arange(K.N_AMPLITUDES) * K.AMPLITUDE_STEP)
+    tab = equivalent_damping_table(sp, amplitudes_deg=np.maximum(grid, 1.0), **kw)
+    ref = equivalent_damping_table(sp, amplitudes_deg=[float(d.get("ikeda_amplitude_deg", 10.0))], **kw)
+    return float(ref["b1"][0]), float(ref["b2"][0]), tab["b2"].values.copy()
 
 
 def section_depths(sec: Sections, h0: float, th0: float) -> np.ndarray:
@@ -171,7 +246,7 @@ class ModelParameters:
 
     Attributes: water density ``rho`` [kg/m^3], gravity ``g`` [m/s^2], centre of gravity ``xg``
     (from midships, + forward) and ``zg`` (above the baseline) [m], ``mass`` [kg], quadratic roll
-    damping ``b44q`` [N m s^2/rad^2], the wave heading as ``cos_beta``, ``sin_beta``, the inertia
+    damping ``b44q`` (N_AMPLITUDES,) [N m s^2/rad^2] against the running roll amplitude, the wave heading as ``cos_beta``, ``sin_beta``, the inertia
     tensor about G in body axes ``inertia`` (3, 3) [kg m^2], the ``added_mass`` and linear
     ``damping`` (6, 6) of the generalized coordinates (surge, sway, heave of G, roll, pitch, yaw)
     [kg, kg m^2; N s/m, N m s/rad] and ``free`` (6,): 1 for a free coordinate, 0 for a held one.
@@ -182,7 +257,7 @@ class ModelParameters:
     xg: float
     zg: float
     mass: float
-    b44q: float
+    b44q: np.ndarray
     cos_beta: float
     sin_beta: float
     inertia: np.ndarray
@@ -205,7 +280,7 @@ def parameters(co: Coefficients, rho: float, lcg: float, kg: float, heading_deg:
     """Parameter vector of the RK4 kernels (``_rhs``) for coefficients ``co``, loading (LCG, KG [m]),
     wave heading [degree] and the free coordinates (default: the 3-DOF heave, roll, pitch)."""
     b = np.radians(heading_deg)
-    return ModelParameters(rho=rho, g=G, xg=lcg, zg=kg, mass=co.mass, b44q=co.b44q, cos_beta=np.cos(b),
+    return ModelParameters(rho=rho, g=G, xg=lcg, zg=kg, mass=co.mass, b44q=co.b44q_profile(), cos_beta=np.cos(b),
                            sin_beta=np.sin(b), inertia=co.inertia_tensor(), added_mass=co.added_mass_matrix(),
                            damping=co.damping_matrix(), free=tuple(free)).vector()
 
@@ -222,6 +297,7 @@ def initial_state(sec: Sections, st: xr.Dataset, phi0_deg: float = 0.0) -> np.nd
     s[K.S_Z] = h - np.sin(th) * lcg + np.cos(th) * np.cos(phi0) * kg
     s[K.S_ROLL] = phi0
     s[K.S_PITCH] = th
+    s[K.S_AMP] = s[K.S_PEAK] = abs(phi0)  # released from phi0: the first half-cycle's amplitude
     return s
 
 

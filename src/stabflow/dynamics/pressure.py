@@ -71,7 +71,7 @@ def simulate_pressure(model: PressureModel, p: np.ndarray, s0: np.ndarray, durat
         h = K._origin_height(s[K.S_Z], s[K.S_ROLL], s[K.S_PITCH], model.xg, model.zg)
         f = model.loads(t, h, s[K.S_ROLL], s[K.S_PITCH])
         K._accelerations(p, s, f, acc, mq, r)
-        return np.concatenate([s[K.S_RATE:], acc])
+        return np.concatenate([s[K.S_RATE:K.S_RATE + 6], acc, [0.0, 0.0]])
 
     n = int(round(duration / dt))
     s = np.asarray(s0, float).copy()
@@ -83,7 +83,9 @@ def simulate_pressure(model: PressureModel, p: np.ndarray, s0: np.ndarray, durat
         k2 = rhs(t + 0.5 * dt, s + 0.5 * dt * k1)
         k3 = rhs(t + 0.5 * dt, s + 0.5 * dt * k2)
         k4 = rhs(t + dt, s + dt * k3)
+        prev = s[K.S_ROLL]
         s = s + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        K._update_amplitude(prev, s)
         out[j + 1] = s
     return np.arange(n + 1) * dt, out
 

@@ -8,9 +8,11 @@ law for G and Euler's equations in body axes,
     m v_G' = F + m g,        I w' + w x (I w) = M_b,        w = E(phi, theta) (phi', theta', psi'),
 
 projected on q (Kane's method) give M(q) q'' = r(q, q'): M = J^T diag(m 1, I) J + A and
-r = J^T (tau - M_RB J' q' - (0, w x I w)) - B q' - B44q phi'|phi'| e_phi, with J = diag(1, 1, 1, E).
+r = J^T (tau - M_RB J' q' - (0, w x I w)) - B q' - B44q(phi_a) phi'|phi'| e_phi, with J = diag(1, 1, 1, E)
+and phi_a the running roll amplitude (LAMP's quasi-steady form, paper 004 eqs 17-19).
 The added mass A and linear damping B (6 x 6) act on q, as the seakeeping (equilibrium) axes of
-the radiation forces; the inertia tensor I is about G in body axes. A coordinate may be held
+the radiation forces; the inertia tensor I is about G in body axes. The state is (q, q', phi_a,
+peak): two memory states, held within a step, carry the running roll amplitude. A coordinate may be held
 (``free`` flag 0): its acceleration is zero and its row drops out. The 3-DOF model is the
 constrained case with surge, sway and yaw held (``THREE_DOF``), so that G moves on a vertical line
 and the heave equation is written for G, including its vertical acceleration relative to any
@@ -42,7 +44,7 @@ def origin_height(p: np.ndarray, q) -> float:
 
 
 def generalized_system(p: np.ndarray, state, loads) -> tuple[np.ndarray, np.ndarray]:
-    """(M (6, 6) [kg, kg m^2], r (6,) [N, N m]) of M q'' = r at ``state`` (12,) with the FK + HS
+    """(M (6, 6) [kg, kg m^2], r (6,) [N, N m]) of M q'' = r at ``state`` (N_STATE,) with the FK + HS
     ``loads`` (6,) (force and moment about G in the heading frame), all coordinates free."""
     mq, r = np.empty((6, 6)), np.empty(6)
     K._generalized_system(p, np.asarray(state, float), np.asarray(loads, float), mq, r)
@@ -60,14 +62,14 @@ def generalized_loads(p: np.ndarray, q, loads) -> np.ndarray:
 
 
 def accelerations(p: np.ndarray, state, loads) -> np.ndarray:
-    """q'' (6,) at ``state`` (12,) for ``loads`` (6,), held coordinates zero (``p``'s free flags)."""
+    """q'' (6,) at ``state`` (N_STATE,) for ``loads`` (6,), held coordinates zero (``p``'s free flags)."""
     acc = np.empty(6)
     K._accelerations(p, np.asarray(state, float), np.asarray(loads, float), acc, np.empty((6, 6)), np.empty(6))
     return acc
 
 
 def mechanical_energy(sec, p: np.ndarray, states: np.ndarray) -> np.ndarray:
-    """Total mechanical energy [J] along ``states`` (n, 12) in calm water: kinetic energy of the
+    """Total mechanical energy [J] along ``states`` (n, N_STATE) in calm water: kinetic energy of the
     rigid body and the added mass, potential of G and the hydrostatic potential of the sections
     (module docstring). Exact clipping of the sections, as the kernel without tables."""
     from stabflow.hydrostatics._kernels import _station_sections
@@ -89,7 +91,7 @@ def mechanical_energy(sec, p: np.ndarray, states: np.ndarray) -> np.ndarray:
         # int z_e dA over each wet section, z_e = h - sin(theta) x + cos(theta) (sin(phi) y + cos(phi) z)
         zint = A * (h - st * xs) + ct * (sp * Sy + cp * Sz)
         potential = m * g * s[K.S_Z] - rho * g * float(np.sum(dx * zint))
-        v = s[K.S_RATE:]
+        v = s[K.S_RATE:K.S_RATE + 6]
         pd, td, yd = v[3], v[4], v[5]
         w = np.array([pd - st * yd, cp * td + sp * ct * yd, -sp * td + cp * ct * yd])
         kinetic = 0.5 * m * float(v[:3] @ v[:3]) + 0.5 * float(w @ inertia @ w) + 0.5 * float(v @ added @ v)

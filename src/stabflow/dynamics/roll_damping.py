@@ -570,6 +570,10 @@ def bilge_keel_hull_damping(sp: xr.Dataset, bk: BilgeKeels, omega, phi_a, rho=RH
     B0 = (m2**2 / (3 * (h0 - 0.215 * m1)) + (1 - m1) ** 2 * (2 * m3 - m2) / (6 * (1 - 0.215 * m1))
           + m1 * (m3 * m5 + m4 * m6))  # ITTC eq 55
     integral = d**2 * (-A0 * cp_minus + B0 * cp_plus)  # ITTC eq 55
+    # at large amplitudes the negative-pressure length S0 (eq 52) outgrows the idealised section and
+    # the fitted distribution turns negative (DTMB 5415: beyond about 65 deg), which would feed
+    # energy into the roll: a damping moment cannot, so each section's share is floored at zero
+    integral = np.maximum(integral, 0.0)
     per_len = 4.0 / (3.0 * np.pi) * rho * l_root**2 * f**2 * omega * phi_a * integral  # ITTC eq 53, K09 eq 34
     return float(np.sum(per_len * frac * sp["dx"].values)) * bk.count / 2.0
 

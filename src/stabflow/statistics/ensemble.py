@@ -80,7 +80,7 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
     st = compute_statics(s, hull)
     sec = Sections(hull)
     use_hydro = hydro if s.data["dynamics"].get("hydro") == "capytaine" else None
-    co = coefficients(s, sec, st, use_hydro)
+    co = coefficients(s, sec, st, use_hydro, speed=float(cond["speed_kn"]) * KNOT)
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
     depth = section_depths(sec, h0, th0) if cond.get("dphi_dzdt", False) else None
     tables = section_tables(sec, int(cond.get("table_angles", 181)), int(cond.get("table_levels", 101)))
