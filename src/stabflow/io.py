@@ -98,6 +98,10 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "crossing_step": ("1", "RK4 step just before the crossing"),
     "peak_record": ("1", "record of the roll peak"),
     "peak_time": ("s", "time of the roll peak (parabolic refinement)"),
+    # roll decay
+    "peak_roll": ("degree", "positive roll peak of the decay record"),
+    "cycle_amplitude": ("degree", "mean of two successive positive roll peaks"),
+    "cycle_zeta": ("1", "equivalent damping ratio of the cycle, delta / sqrt(4 pi^2 + delta^2), delta = ln(a_n / a_n+1)"),
     "peak_value": ("degree", "roll at the peak (maxima positive, minima negative)"),
     "envelope_peak_record": ("1", "record of the envelope peak"),
     "envelope_peak_time": ("s", "time of the roll-envelope peak"),

@@ -174,6 +174,64 @@ def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_n
     return ds
 
 
+def run_roll_decay(ship_yaml, hull_nc, statics_nc, out_nc, fig=None, hydro_nc=None) -> xr.Dataset:
+    """roll_decay step: calm-water free roll from ``dynamics.decay_heel_deg`` with the ship's own
+    coefficients (zero speed), its peaks and equivalent damping per cycle, and with
+    ``roll_damping: ikeda`` Ikeda's components against roll amplitude and speed → NetCDF + figure."""
+    import numpy as np
+
+    from stabflow.dynamics import coefficients, simulate
+    from stabflow.geometry import Sections
+    from stabflow.io import annotate, write_netcdf
+    from stabflow.plots.roll_damping import roll_decay_figure
+    from stabflow.statistics.signals import local_peaks
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    sec = Sections(hull)
+    d = ship.data["dynamics"]
+    hydro = _open_optional(hydro_nc) if d["hydro"] == "capytaine" else None
+    co = coefficients(ship, sec, st, hydro, speed=0.0)
+    heel = float(d["decay_heel_deg"])
+    tn = co.natural_period("roll")
+    dt = min(0.05, tn / 200)
+    rec = simulate(sec, st, co, ship.rho, (np.array([]),) * 3, 0.0, 0.0, 15 * tn, dt, phi0_deg=heel)
+    t, roll = rec["time"].values, rec["roll"].values
+    tp, vp = local_peaks(t, roll, 0.0)
+    # equivalent damping per cycle from successive positive peaks: zeta = delta / sqrt(4 pi^2 + delta^2)
+    delta = np.log(vp[:-1] / vp[1:]) if len(vp) > 1 else np.zeros(0)
+    ds = xr.Dataset(
+        {"roll": ("time", roll), "peak_time": ("peak", tp), "peak_roll": ("peak", vp),
+         "cycle_amplitude": ("cycle", 0.5 * (vp[:-1] + vp[1:]) if len(vp) > 1 else np.zeros(0)),
+         "cycle_zeta": ("cycle", delta / np.sqrt(4 * np.pi**2 + delta**2))},
+        coords={"time": t},
+        attrs=dict(ship=ship.name, decay_heel_deg=heel, roll_damping=co.roll_damping, b44=co.b44, b44q=co.b44q,
+                   roll_period=tn, dt=dt, capsized=int(rec.attrs["capsized"])),
+    )
+    if co.roll_damping == "ikeda":
+        from stabflow.constants import G
+        from stabflow.dynamics.roll_damping import damping_vs_amplitude, damping_vs_speed, section_parameters
+
+        sp = section_parameters(sec, st)
+        omega = float(np.sqrt(co.c44 / (co.i44 + co.a44)))
+        kw = dict(omega=omega, bilge_keels=ship.data.get("bilge_keels"), wave=float(hydro["damping_roll"]),
+                  rho=ship.rho, normal_force=d["ikeda_normal_force"])
+        amp = damping_vs_amplitude(sp, amplitudes_deg=np.arange(1.0, 41.0), speed=0.0, **kw)
+        spd = damping_vs_speed(sp, roll_amplitude_deg=float(d["ikeda_amplitude_deg"]),
+                               speeds=np.linspace(0.0, 0.3 * np.sqrt(G * float(st["lwl"])), 13), **kw)
+        for v in amp.data_vars:
+            if "roll_amplitude" in amp[v].dims:
+                ds[f"amp_{v}"] = amp[v]
+        for v in spd.data_vars:
+            ds[f"speed_{v}"] = spd[v]
+        ds.attrs.update(ikeda_amplitude_deg=float(d["ikeda_amplitude_deg"]), ikeda_omega=omega)
+    ds = annotate(ds)
+    if fig:
+        roll_decay_figure(ds, fig, title=f"{ship.name}: calm-water roll decay from {heel:g}° (B44 {co.b44:.3g} N m s/rad, "
+                          f"B44q {co.b44q:.3g} N m s²/rad², roll damping from {co.roll_damping})")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
 def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
     """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
     from stabflow.io import write_netcdf

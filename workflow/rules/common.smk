@@ -58,6 +58,13 @@ def hydro_input(wildcards):
     return []
 
 
+def hydro_first(wildcards):
+    """The Capytaine results of the first RAO condition, for ships that use them (the roll decay)."""
+    if SHIPS[wildcards.ship].data["dynamics"]["hydro"] == "capytaine":
+        return [f"{RESULTS}/hydro/{wildcards.ship}_{RAO_CONDITIONS[0]}.nc"]
+    return []
+
+
 def per_ship_condition(pattern):
     """Expand a results pattern over every ship and RAO condition."""
     return expand(pattern, ship=list(SHIPS), condition=RAO_CONDITIONS)
@@ -124,6 +131,7 @@ def all_outputs():
         per_ship(f"{RESULTS}/statics/{{ship}}.nc")
         + per_ship(f"{RESULTS}/waves/{{ship}}.nc")
         + per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc")
+        + per_ship(f"{RESULTS}/roll_decay/{{ship}}.nc")
         + [f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES]
         + [f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]]
         + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]

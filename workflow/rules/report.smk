@@ -7,6 +7,7 @@ rule report:
         wave_figures=per_ship(f"{RESULTS}/waves/{{ship}}_gm.png") + per_ship(f"{RESULTS}/waves/{{ship}}_gz_waves.png"),
         metric=f"{RESULTS}/waves/early_stage_C.csv",
         rao=per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc"),
+        roll_decay=per_ship(f"{RESULTS}/roll_decay/{{ship}}.nc"),
         validation=validation_files(),
         ensembles=[f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES],
         extremes=[f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]],

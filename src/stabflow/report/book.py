@@ -107,7 +107,20 @@ def ship_page(name: str, results: Path, figdir: Path) -> str:
     return _render("ship.md.j2", name=name, hull_source=hull.attrs.get("hull_source", ""),
                    stations=hull.sizes["station"], hull_volume=float(hull.hull_volume), figures=figures,
                    particulars=particulars, waves=_waves_data(name, results, figdir),
-                   raos=_rao_data(name, results, figdir))
+                   raos=_rao_data(name, results, figdir), decay=_decay_data(name, results, figdir))
+
+
+def _decay_data(name: str, results: Path, figdir: Path) -> dict | None:
+    """The roll-decay figure (copied) and its numbers; None if the step did not run."""
+    nc = results / "roll_decay" / f"{name}.nc"
+    if not nc.exists():
+        return None
+    ds = _open(nc)
+    a = ds.attrs
+    return {"figure": _copy(nc.with_suffix(".png"), figdir), "heel": float(a["decay_heel_deg"]),
+            "source": a["roll_damping"], "b44": float(a["b44"]), "b44q": float(a["b44q"]),
+            "period": float(a["roll_period"]), "peaks": [float(v) for v in ds["peak_roll"].values[:6]],
+            "ikeda": "amp_total" in ds}
 
 
 def _rao_data(name: str, results: Path, figdir: Path) -> list[dict]:
