@@ -174,3 +174,24 @@ def test_three_dof_accelerations_match_the_textbook_form():
     # and the origin sits below G by the rotated lever arm
     q = state[:6]
     assert origin_height(p, q) == pytest.approx(np.sin(th) * float(st.lcg) - np.cos(th) * float(st.kg), abs=1e-12)
+
+
+def test_running_roll_amplitude_follows_lamp():
+    """LAMP's running amplitude (paper 004, after eq 19): after each zero crossing of roll the
+    memory state holds the largest |roll| of the half-cycle just ended; a table of B44q rising
+    with amplitude damps the first large swings harder than a constant one at the small-amplitude
+    value."""
+    s, sec, st, co = ship_model("barge")
+    co = dataclasses.replace(co, b44q_table=np.linspace(0.0, 5e9, K.N_AMPLITUDES))
+    p, out = free_roll(sec, st, co, s.rho, 20.0, 60.0, 0.05)
+    roll = out[:, K.S_ROLL]
+    cross = np.nonzero(np.sign(roll[1:]) != np.sign(roll[:-1]))[0] + 1
+    assert len(cross) > 4
+    assert out[0, K.S_AMP] == pytest.approx(np.radians(20.0))
+    for a, b in zip(cross[:-1], cross[1:]):
+        # between crossings the amplitude is held at the previous half-cycle's largest |roll|
+        assert np.all(out[a:b, K.S_AMP] == out[a, K.S_AMP])
+        assert out[b, K.S_AMP] == pytest.approx(np.abs(roll[a:b]).max(), rel=1e-12)
+    const = dataclasses.replace(co, b44q_table=None, b44q=0.0)
+    _, base = free_roll(sec, st, const, s.rho, 20.0, 60.0, 0.05)
+    assert np.abs(roll[cross[2]:]).max() < np.abs(base[cross[2]:, K.S_ROLL]).max()

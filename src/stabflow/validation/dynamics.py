@@ -10,7 +10,10 @@ config (:func:`stabflow.dynamics.model.config_coefficients`, also for ``hydro: c
 "Measured" below: barge, wigley, dtmb5415 (and its flare/tumblehome variants), dtc.
 
 Roll decay (2 rows, independent; tolerance 0.1 %)
-    Calm-water free roll from 1 deg heel (quadratic roll damping set to zero for this run).
+    Calm-water free roll from 0.25 deg heel (quadratic roll damping set to zero for this run): small
+    enough for linear theory also on the lightly damped trawler (zeta 0.005), whose decrement
+    deviates by 0.233 / 0.058 / 0.015 % from 1 / 0.5 / 0.25 deg — growing as phi0^2, the GZ
+    curvature and the heave-pitch coupling, not the damping.
     Period from parabolically refined peak times vs the damped natural period
     ``T_n / sqrt(1 - zeta^2)``; mean logarithmic decrement of successive peaks vs
     ``2 pi zeta / sqrt(1 - zeta^2)``, with ``T_n = 2 pi sqrt((I44 + A44) / (rho g V GM))`` and
@@ -112,7 +115,7 @@ DOFS = ("heave", "roll", "pitch")
 #: stern-quartering heading of the wave rows [degree] (0 following, 180 head seas)
 QUARTERING = 45.0
 #: initial heel of the roll decay [degree]
-DECAY_HEEL = 1.0
+DECAY_HEEL = 0.25
 #: calm-water rest: record [s], step [s], bound on |heave| [m], |roll|, |pitch| [degree]
 REST_DURATION, REST_DT, REST_TOL = 600.0, 0.1, 1e-6
 #: largest panel edge of the box barge's pressure mesh [m]
@@ -674,7 +677,7 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
     # --- roll decay: the reference stiffness rho g V GM comes from the statics step's metacentric
     # formula, not from the FK+HS kernel that drives the simulation -> independent analytic route
     lin = ("linear 1-DOF roll, stiffness rho g V GM from the statics step (metacentric formula), "
-           "damping B44 of the coefficients; 1 deg initial heel, quadratic damping off")
+           f"damping B44 of the coefficients; {DECAY_HEEL:g} deg initial heel, quadratic damping off")
     rows.append(_row(lambda: 100 * (decay()["period"] / decay()["period_ref"] - 1),
                      "roll decay: period vs damped natural period", "%", lin, "independent", tolerance=TOL_DECAY))
     def decrement():
