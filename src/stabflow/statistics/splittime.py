@@ -6,8 +6,10 @@ Non-rare problem
     lambda = N_U / (N_T dt), with a binomial (Clopper-Pearson) interval on N_U out of N_T samples.
 Rare problem (motion perturbation method)
     For each crossing the record's seaway is regenerated from (master seed, record) and the record
-    re-simulated (bit-identical to the ensemble run) up to the RK4 step just before the crossing.
-    From that exact state the roll rate is increased by delta (in the direction of the crossing)
+    re-simulated (bit-identical to the ensemble run) up to the RK4 step just before the crossing; an
+    RK4 sub-step (Newton-refined length, waves synthesized off the grid) carries that state to the
+    crossing instant (:func:`crossing_state`). There the roll rate is increased by delta (in the
+    direction of the crossing), a sub-step of the rest of the step returns to the time grid
     and the motion followed in the same waves for ``window_periods`` roll periods; it stops at
     once if roll passes 90 deg (capsize). The smallest capsizing delta is found by bisection to
     ``tolerance`` deg/s. Metric: y = phidot_U / phidot_Cr with phidot_Cr = phidot_U + delta, so
@@ -37,6 +39,7 @@ from scipy import stats
 from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
 from stabflow.dynamics.tables import kernel_args
 from stabflow.statistics.ensemble import Model, simulate_record, wave_table
+from stabflow.waves.synthesis import station_wave_table
 from stabflow.statistics.extremes import decluster, gpd_mle
 from stabflow.io import annotate
 from stabflow.statistics.intervals import record_bootstrap
@@ -81,11 +84,51 @@ def poisson_interval(k: int, hours: float, alpha: float = 0.05):
     return k / hours, lo / hours, hi / hours
 
 
+def sub_step(model: Model, components, s: np.ndarray, t0: float, tau: float) -> np.ndarray:
+    """One RK4 step of length ``tau`` [s] from state ``s`` at time ``t0`` [s], off the record's time
+    grid: the waves of the record's ``components`` (amp, omega, phase) are synthesized at t0,
+    t0 + tau / 2 and t0 + tau (the same float32 tables as the ensemble's). Returns the new state."""
+    amp, w, ph = components
+    tab = station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed,
+                             np.array([t0, t0 + 0.5 * tau, t0 + tau]), model.depth, dtype=np.float32)
+    out = np.empty((2, N_STATE))
+    _simulate(*kernel_args(model.sec, model.tables), model.p, tab, tau, 0, 1, np.asarray(s, float), np.inf, out,
+              np.empty((0, 6)))
+    return out[1]
+
+
+def crossing_state(model: Model, components, states: np.ndarray, n0: int, level: float,
+                   iterations: int = 6) -> tuple[float, np.ndarray]:
+    """The state at the instant roll crosses ``level`` [rad] between steps ``n0`` and ``n0 + 1``:
+    RK4 sub-steps from the step before the crossing, the sub-step length refined by Newton's method
+    on roll(tau) - level (start: linear interpolation). Returns (time [s], state)."""
+    dt = model.dt
+    s0 = states[n0]
+    r0, r1 = s0[S_ROLL], states[n0 + 1, S_ROLL]
+    tau = dt * (level - r0) / (r1 - r0) if r1 != r0 else 0.0
+    s = s0
+    for _ in range(iterations):
+        tau = min(max(tau, 0.0), dt)
+        s = sub_step(model, components, s0, n0 * dt, tau)
+        err = s[S_ROLL] - level
+        rate = s[S_RATE + S_ROLL]
+        if abs(err) <= 1e-12 or rate == 0.0:
+            break
+        tau -= err / rate
+    return n0 * dt + tau, s
+
+
 def critical_perturbations(model: Model, records, steps, sides, window: int, dmax_deg: float, tol_deg: float,
-                           threads: int = 1, progress: bool = False):
+                           threads: int = 1, progress: bool = False, levels=None):
     """Critical roll-rate perturbation [deg/s] for each crossing (record, step before the crossing,
     side +1/-1). Crossings of one record share its regenerated seaway; records run in parallel
-    threads (the RK4 kernel releases the GIL). Returns (delta [deg/s], bisection runs) per crossing."""
+    threads (the RK4 kernel releases the GIL).
+
+    With ``levels`` (the crossed roll angle of each crossing [deg]) the perturbation is applied to
+    the exact state at the crossing instant (:func:`crossing_state`) and the perturbed run returns
+    to the time grid with a sub-step of the rest of that step; without, to the state at the step
+    before. Returns (delta [deg/s], bisection runs, roll rate at the crossing [deg/s], crossing
+    time [s]) per crossing (the last two NaN without ``levels``)."""
     from tqdm import tqdm
 
     args = kernel_args(model.sec, model.tables)
@@ -94,23 +137,40 @@ def critical_perturbations(model: Model, records, steps, sides, window: int, dma
     sides = np.asarray(sides)
     delta = np.full(len(records), np.nan)
     runs = np.zeros(len(records), np.int64)
+    rate_at = np.full(len(records), np.nan)
+    t_at = np.full(len(records), np.nan)
     cap = np.radians(90.0)
     nofo = np.empty((0, 6))
+    dt = model.dt
 
     def one_record(r):
         idx = np.nonzero(records == r)[0]
         wtab = wave_table(model, int(r))
+        comps = model.sea.components(model.cond["seed"], int(r))
         states, _ = simulate_record(model, int(r), wtab=wtab)
         buf = np.empty((model.nsteps + 1, N_STATE))
         for c in idx:
             n0 = int(steps[c])
             n1 = min(n0 + window, model.nsteps)
-            s0 = states[n0].copy()
+            if levels is None:
+                s0, tc = states[n0].copy(), None
+            else:
+                tc, s0 = crossing_state(model, comps, states, n0, np.radians(levels[c]))
+                rate_at[c], t_at[c] = abs(np.degrees(s0[S_RATE + S_ROLL])), tc
 
-            def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c]):
+            def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c], tc=tc):
                 s = s0.copy()
                 s[S_RATE + S_ROLL] += side * np.radians(d)
-                last = _simulate(*args, model.p, wtab, model.dt, n0, n1, s, cap, buf, nofo)
+                if tc is not None:  # back onto the grid at step n0 + 1
+                    s = sub_step(model, comps, s, tc, (n0 + 1) * dt - tc)
+                    if abs(s[S_ROLL]) > cap:
+                        return True
+                    start = n0 + 1
+                else:
+                    start = n0
+                if start >= n1:
+                    return False
+                last = _simulate(*args, model.p, wtab, dt, start, n1, s, cap, buf, nofo)
                 return last < n1 or abs(buf[last, S_ROLL]) > cap
 
             delta[c], runs[c] = bisect_critical(capsizes, dmax_deg, tol_deg)
@@ -121,7 +181,7 @@ def critical_perturbations(model: Model, records, steps, sides, window: int, dma
         for _ in tqdm(ex.map(one_record, todo), total=len(todo), desc="perturbations (records)",
                       disable=not progress, mininterval=10):
             pass
-    return delta, runs
+    return delta, runs, rate_at, t_at
 
 
 def capsize_probability(y, u: float):
@@ -167,8 +227,11 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
         rate_u = np.abs(ens["crossing_roll_rate"].values[m])
         side = ens["crossing_side"].values[m]
         step = ens["crossing_step"].values[m]
-        delta, runs = critical_perturbations(model, rec, step, side, window, cfg["max_perturbation"],
-                                             cfg["tolerance"], threads, progress)
+        delta, runs, rate_x, t_x = critical_perturbations(model, rec, step, side, window, cfg["max_perturbation"],
+                                                          cfg["tolerance"], threads, progress,
+                                                          levels=side * float(thr))
+        # the metric uses the roll rate of the exact state at the crossing (the perturbed state)
+        rate_u, t = rate_x, t_x
         y = np.where(np.isfinite(delta), rate_u / (rate_u + delta), rate_u / (rate_u + cfg["max_perturbation"]))
         # declustering: same threshold, same record, closer than tau; keep the largest metric
         # (decluster() keeps cluster maxima of values above a level: use y + 1 > 0)
