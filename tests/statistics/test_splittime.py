@@ -102,3 +102,33 @@ def test_crossing_state_matches_a_fine_step_reference():
     interp = (1 - w) * sc[n0, S_RATE + S_ROLL] + w * sc[n0 + 1, S_RATE + S_ROLL]
     ref = sref[S_RATE + S_ROLL]
     assert abs(s[S_RATE + S_ROLL] - ref) < 0.5 * abs(interp - ref), (s[S_RATE + S_ROLL], interp, ref)
+
+
+def test_figure_runs_and_bisection_share_one_perturbed_run():
+    """The critical perturbation found by the bisection capsizes the run drawn for paper 003 Fig. 4
+    from the same crossing (barge, beam sea of config/test.yaml: 18.86 deg/s at the first 10 deg
+    crossing, capsize within 1.5 roll periods). Noticed: 0.9 of it also capsizes, later (after a
+    full swing, within the 3-period window), so the capsizing perturbations are not one interval
+    and the bisection's monotonic bracket is an assumption (issue 16)."""
+    from stabflow.config import load_pipeline, load_ship
+    from stabflow.dynamics._kernels import S_ROLL
+    from stabflow.statistics.ensemble import build_model, simulate_record
+    from stabflow.statistics.splittime import critical_perturbations, perturbed_histories
+
+    from ..conftest import ROOT, SHIPS
+
+    cond = dict(load_pipeline(ROOT / "config" / "test.yaml")["ensembles"][0], name="barge_beam", duration=300.0)
+    model = build_model(load_ship(SHIPS / "barge.yaml"), cond)
+    level = 10.0
+    states, last = simulate_record(model, 0)
+    roll = np.degrees(states[: last + 1, S_ROLL])
+    n0 = int(np.nonzero((roll[:-1] < level) & (roll[1:] >= level))[0][0])
+    window = int(round(3 * model.roll_period / model.dt))
+    delta, runs, rate, tc = critical_perturbations(model, [0], [n0], [1], window, 30.0, 0.01, levels=[level])
+    d = float(delta[0])
+    assert np.isfinite(d) and d > 0 and rate[0] > 0 and n0 * model.dt < tc[0] < (n0 + 1) * model.dt
+    t, base, (below, at) = perturbed_histories(model, 0, n0, 1, [0.9 * d, d], window, level)
+    assert t[0] == pytest.approx(tc[0]) and base[0] == pytest.approx(level, abs=1e-6)
+    assert np.nanmax(np.abs(at)) > 90.0
+    # the smaller perturbation stays clear of 90 deg for the first swing (then capsizes later)
+    assert np.nanmax(np.abs(below[: np.argmax(np.abs(at) > 90.0) + 1])) < 90.0

@@ -42,10 +42,10 @@ def splittime_figures(model, ds: xr.Dataset, paths: dict, title: str = ""):
     ok = np.isfinite(d) & (d > 0)
     k = int(np.nonzero(ok)[0][np.argmax(y[ok])]) if ok.any() else 0
     rk, sk, tk = int(ev["crossing_record"].values[k]), int(ev["crossing_side"].values[k]), float(ev["crossing_time"].values[k])
-    step = int(np.floor(tk / model.dt))
+    step = int(np.floor(tk / model.dt))  # the step before the crossing instant
     dc = float(d[k]) if np.isfinite(d[k]) else 10.0
     deltas = [0.25 * dc, 0.5 * dc, 0.9 * dc, dc, 1.5 * dc]
-    tt, base, runs = perturbed_histories(model, rk, step, sk, deltas, int(ds.attrs["window_steps"]))
+    tt, base, runs = perturbed_histories(model, rk, step, sk, deltas, int(ds.attrs["window_steps"]), thr0)
     fig, ax = plt.subplots(figsize=(8, 4))
     for dd, rr in zip(deltas, runs):
         ax.plot(tt, rr, lw=1, label=f"+{dd:.2f} deg/s" + (" (critical)" if dd == dc else ""))

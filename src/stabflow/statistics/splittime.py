@@ -118,6 +118,26 @@ def crossing_state(model: Model, components, states: np.ndarray, n0: int, level:
     return n0 * dt + tau, s
 
 
+def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t_c: float, n0: int, n1: int,
+                  side: int, delta_deg: float, buf: np.ndarray) -> tuple[bool, int]:
+    """Follow the record from the crossing state ``s_c`` at ``t_c`` [s] (between steps n0 and n0 + 1)
+    with the roll rate increased by ``side * delta_deg`` [deg/s]: a sub-step of the rest of step n0,
+    then the grid up to step ``n1``; ``buf`` (nsteps + 1, N_STATE) receives the grid states from
+    n0 + 1. Returns (capsized: roll beyond 90 deg, last step done)."""
+    cap = np.radians(90.0)
+    s = s_c.copy()
+    s[S_RATE + S_ROLL] += side * np.radians(delta_deg)
+    s = sub_step(model, components, s, t_c, (n0 + 1) * model.dt - t_c)
+    buf[n0 + 1] = s
+    if abs(s[S_ROLL]) > cap:
+        return True, n0 + 1
+    if n0 + 1 >= n1:
+        return False, n0 + 1
+    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, n0 + 1, n1, s, cap, buf,
+                     np.empty((0, 6)))
+    return bool(last < n1 or abs(buf[last, S_ROLL]) > cap), last
+
+
 def critical_perturbations(model: Model, records, steps, sides, window: int, dmax_deg: float, tol_deg: float,
                            threads: int = 1, progress: bool = False, levels=None):
     """Critical roll-rate perturbation [deg/s] for each crossing (record, step before the crossing,
@@ -159,18 +179,11 @@ def critical_perturbations(model: Model, records, steps, sides, window: int, dma
                 rate_at[c], t_at[c] = abs(np.degrees(s0[S_RATE + S_ROLL])), tc
 
             def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c], tc=tc):
+                if tc is not None:  # from the crossing instant, back onto the grid at step n0 + 1
+                    return perturbed_run(model, comps, wtab, s0, tc, n0, n1, side, d, buf)[0]
                 s = s0.copy()
                 s[S_RATE + S_ROLL] += side * np.radians(d)
-                if tc is not None:  # back onto the grid at step n0 + 1
-                    s = sub_step(model, comps, s, tc, (n0 + 1) * dt - tc)
-                    if abs(s[S_ROLL]) > cap:
-                        return True
-                    start = n0 + 1
-                else:
-                    start = n0
-                if start >= n1:
-                    return False
-                last = _simulate(*args, model.p, wtab, dt, start, n1, s, cap, buf, nofo)
+                last = _simulate(*args, model.p, wtab, dt, n0, n1, s, cap, buf, nofo)
                 return last < n1 or abs(buf[last, S_ROLL]) > cap
 
             delta[c], runs[c] = bisect_critical(capsizes, dmax_deg, tol_deg)
@@ -298,22 +311,24 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
     return annotate(ds)
 
 
-def perturbed_histories(model: Model, record: int, step: int, side: int, deltas, window: int):
-    """Roll [deg] of the unperturbed record and of perturbed runs (roll rate + side * delta [deg/s])
-    from ``step`` over ``window`` steps (paper 003 Fig. 4). Returns (t, unperturbed, list of runs)."""
+def perturbed_histories(model: Model, record: int, step: int, side: int, deltas, window: int, level_deg: float):
+    """Roll [deg] of the unperturbed record and of perturbed runs (roll rate + side * delta [deg/s]
+    at the exact crossing of ``side * level_deg`` after ``step``, as in :func:`critical_perturbations`)
+    over ``window`` steps (paper 003 Fig. 4). Returns (t [s], unperturbed, list of runs), starting at
+    the crossing instant."""
     wtab = wave_table(model, int(record))
+    comps = model.sea.components(model.cond["seed"], int(record))
     states, last = simulate_record(model, int(record), wtab=wtab)
+    tc, sc = crossing_state(model, comps, states, step, np.radians(side * level_deg))
     n1 = min(step + window, model.nsteps)
-    t = np.arange(step, n1 + 1) * model.dt
+    t = np.concatenate([[tc], np.arange(step + 1, n1 + 1) * model.dt])
     runs = []
     for d in deltas:
-        s = states[step].copy()
-        s[S_RATE + S_ROLL] += side * np.radians(d)
         buf = np.full((model.nsteps + 1, N_STATE), np.nan)
-        _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, step, n1, s, np.radians(90.0),
-                        buf, np.empty((0, 6)))
-        runs.append(np.degrees(buf[step: n1 + 1, S_ROLL]))
+        perturbed_run(model, comps, wtab, sc, tc, step, n1, side, d, buf)
+        runs.append(np.degrees(np.concatenate([[sc[S_ROLL]], buf[step + 1: n1 + 1, S_ROLL]])))
     base = np.full(len(t), np.nan)
+    base[0] = np.degrees(sc[S_ROLL])
     m = min(last, n1)
-    base[: m - step + 1] = np.degrees(states[step: m + 1, S_ROLL])
+    base[1: m - step + 1] = np.degrees(states[step + 1: m + 1, S_ROLL])
     return t, base, runs
