@@ -209,12 +209,12 @@ def run_roll_decay(ship_yaml, hull_nc, statics_nc, out_nc, fig=None, hydro_nc=No
     )
     if co.roll_damping == "ikeda":
         from stabflow.constants import G
+        from stabflow.dynamics.model import ikeda_inputs
         from stabflow.dynamics.roll_damping import damping_vs_amplitude, damping_vs_speed, section_parameters
 
         sp = section_parameters(sec, st)
-        omega = float(np.sqrt(co.c44 / (co.i44 + co.a44)))
-        kw = dict(omega=omega, bilge_keels=ship.data.get("bilge_keels"), wave=float(hydro["damping_roll"]),
-                  rho=ship.rho, normal_force=d["ikeda_normal_force"])
+        omega = co.natural_frequency("roll")
+        kw = dict(omega=omega, wave=float(hydro["damping_roll"]), **ikeda_inputs(ship))
         amp = damping_vs_amplitude(sp, amplitudes_deg=np.arange(1.0, 41.0), speed=0.0, **kw)
         spd = damping_vs_speed(sp, roll_amplitude_deg=float(d["ikeda_amplitude_deg"]),
                                speeds=np.linspace(0.0, 0.3 * np.sqrt(G * float(st["lwl"])), 13), **kw)

@@ -124,7 +124,7 @@ def test_figure_runs_and_bisection_share_one_perturbed_run():
     roll = np.degrees(states[: last + 1, S_ROLL])
     n0 = int(np.nonzero((roll[:-1] < level) & (roll[1:] >= level))[0][0])
     window = int(round(3 * model.roll_period / model.dt))
-    delta, runs, rate, tc = critical_perturbations(model, [0], [n0], [1], window, 30.0, 0.01, levels=[level])
+    delta, runs, rate, tc = critical_perturbations(model, [0], [n0], [1], [level], window, 30.0, 0.01)
     d = float(delta[0])
     assert np.isfinite(d) and d > 0 and rate[0] > 0 and n0 * model.dt < tc[0] < (n0 + 1) * model.dt
     t, base, (below, at) = perturbed_histories(model, 0, n0, 1, [0.9 * d, d], window, level)

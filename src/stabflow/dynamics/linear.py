@@ -13,7 +13,7 @@ import numpy as np
 
 from stabflow.constants import G
 from stabflow.dynamics import _kernels as K
-from stabflow.dynamics.rigid_body import generalized_loads, generalized_system
+from stabflow.dynamics.rigid_body import coordinates_from_origin, generalized_loads, generalized_system
 from stabflow.dynamics.tables import kernel_args
 from stabflow.dynamics.rao import first_harmonic
 
@@ -26,15 +26,6 @@ def _rest_parameters(rho, xg, zg) -> np.ndarray:
                            inertia=np.zeros((3, 3)), added_mass=np.zeros((6, 6)), damping=np.zeros((6, 6))).vector()
 
 
-def rest_coordinates(xg, zg, h0, th0) -> np.ndarray:
-    """Generalized coordinates (6,) of the calm-water equilibrium given by the body origin's height
-    h0 [m] and trim th0 [rad]: G at z = h0 - sin(th0) xg + cos(th0) zg."""
-    q = np.zeros(6)
-    q[K.S_Z] = h0 - np.sin(th0) * xg + np.cos(th0) * zg
-    q[K.S_PITCH] = th0
-    return q
-
-
 def stiffness_matrix(sec, rho, xg, zg, h0, th0, step: float = 1e-5) -> np.ndarray:
     """3x3 restoring matrix of the coordinates (heave of G, roll, pitch) about the calm-water
     equilibrium (body origin at h0 [m], trim th0 [rad]) by central differences of the generalized
@@ -44,7 +35,7 @@ def stiffness_matrix(sec, rho, xg, zg, h0, th0, step: float = 1e-5) -> np.ndarra
     f = np.empty(6)
     work = np.empty((len(sec.x), 5))
     C = np.empty((3, 3))
-    base = rest_coordinates(xg, zg, h0, th0)
+    base = coordinates_from_origin(h0, 0.0, th0, xg, zg)
     dofs = (K.S_Z, K.S_ROLL, K.S_PITCH)
     for j, d in enumerate(dofs):
         loads = []
@@ -66,7 +57,7 @@ def fk_excitation(model, h0, th0, we, n=64) -> np.ndarray:
     Te = 2 * np.pi / we
     t = np.arange(n) * Te / n
     p = _rest_parameters(1.0, model.xg, model.zg)
-    q = rest_coordinates(model.xg, model.zg, h0, th0)
+    q = coordinates_from_origin(h0, 0.0, th0, model.xg, model.zg)
     L = np.array([generalized_loads(p, q, model.loads(tt, h0, 0.0, th0))[[K.S_Z, K.S_ROLL, K.S_PITCH]] for tt in t])
     out = np.empty(3, complex)
     for j in range(3):

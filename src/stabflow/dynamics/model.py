@@ -23,7 +23,7 @@ from stabflow.hydrostatics.statics import equilibrium
 from stabflow.waves.synthesis import station_wave_table
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics._kernels import _simulate
-from stabflow.dynamics.rigid_body import THREE_DOF
+from stabflow.dynamics.rigid_body import THREE_DOF, coordinates_from_origin
 from stabflow.dynamics.tables import SectionTables, kernel_args
 
 
@@ -75,6 +75,10 @@ class Coefficients:
     def damping_matrix(self) -> np.ndarray:
         """Linear damping of the generalized coordinates (6, 6) [N s/m, N m s/rad]."""
         return np.diag([0.0, 0.0, self.b33, self.b44, self.b55, 0.0])
+
+    def natural_frequency(self, mode: str) -> float:
+        """Undamped natural frequency [rad/s] of 'heave', 'roll' or 'pitch'."""
+        return 2 * np.pi / self.natural_period(mode)
 
     def natural_period(self, mode: str) -> float:
         """Undamped natural period [s] of 'heave', 'roll' or 'pitch'."""
@@ -197,6 +201,21 @@ def config_coefficients(ship: Ship, sec: Sections, st: xr.Dataset) -> Coefficien
     return coefficients(ship.modified(dynamics={"roll_damping": "coefficients"}), sec, st)
 
 
+def ikeda_inputs(ship: Ship) -> dict:
+    """The ship's Ikeda settings as keyword arguments of :mod:`stabflow.dynamics.roll_damping`:
+    ``bilge_keels`` (:class:`~stabflow.dynamics.roll_damping.BilgeKeels` or None), ``normal_force``
+    and ``rho``. Raises StabflowError naming the file and ``bilge_keels`` for inconsistent keels."""
+    from stabflow import StabflowError
+    from stabflow.dynamics.roll_damping import BilgeKeels
+
+    keels = ship.data.get("bilge_keels")
+    try:
+        keels = None if keels is None else BilgeKeels.from_config(keels)
+    except (ValueError, TypeError, KeyError) as e:
+        raise StabflowError(f"{ship.path}: bilge_keels: {e}") from None
+    return dict(bilge_keels=keels, normal_force=ship.data["dynamics"].get("ikeda_normal_force", "kato"), rho=ship.rho)
+
+
 def ikeda_roll_damping(ship: Ship, sec: Sections, st: xr.Dataset, m44: float, c44: float, wave: float,
                        speed: float) -> tuple[float, float, np.ndarray]:
     """Roll damping from Ikeda's components (:mod:`stabflow.dynamics.roll_damping`, paper 004
@@ -205,25 +224,13 @@ def ikeda_roll_damping(ship: Ship, sec: Sections, st: xr.Dataset, m44: float, c4
     damping ``wave`` [N m s/rad]: (B1 [N m s/rad], B2 [N m s^2/rad^2] at
     ``dynamics.ikeda_amplitude_deg``, B2 on the kernels' running-amplitude grid). The table's
     zero-amplitude entry takes the value at 1 degree (the components are defined for phi_a > 0)."""
-    from stabflow.dynamics.roll_damping import equivalent_damping_table, section_parameters
+    from stabflow.dynamics.roll_damping import equivalent_damping_table
 
-    from stabflow import StabflowError
-    from stabflow.dynamics.roll_damping import BilgeKeels
-
-    d = ship.data["dynamics"]
-    keels = ship.data.get("bilge_keels")
-    try:
-        keels = None if keels is None else BilgeKeels.from_config(keels)
-    except (ValueError, TypeError, KeyError) as e:
-        raise StabflowError(f"{ship.path}: bilge_keels: {e}") from None
-    omega = float(np.sqrt(c44 / m44))
-    sp = section_parameters(sec, st)
-    kw = dict(omega=omega, speed=speed, bilge_keels=keels, wave=wave, rho=ship.rho,
-              normal_force=d.get("ikeda_normal_force", "kato"))
     grid = np.degrees(np.arange(K.N_AMPLITUDES) * K.AMPLITUDE_STEP)
-    tab = equivalent_damping_table(sp, amplitudes_deg=np.maximum(grid, 1.0), **kw)
-    ref = equivalent_damping_table(sp, amplitudes_deg=[float(d.get("ikeda_amplitude_deg", 10.0))], **kw)
-    return float(ref["b1"][0]), float(ref["b2"][0]), tab["b2"].values.copy()
+    ref = float(ship.data["dynamics"].get("ikeda_amplitude_deg", 10.0))
+    tab = equivalent_damping_table(sec, st, amplitudes_deg=np.append(np.maximum(grid, 1.0), ref),
+                                   omega=float(np.sqrt(c44 / m44)), speed=speed, wave=wave, **ikeda_inputs(ship))
+    return float(tab["b1"][-1]), float(tab["b2"][-1]), tab["b2"].values[:-1].copy()
 
 
 def section_depths(sec: Sections, h0: float, th0: float) -> np.ndarray:
@@ -246,9 +253,10 @@ class ModelParameters:
 
     Attributes: water density ``rho`` [kg/m^3], gravity ``g`` [m/s^2], centre of gravity ``xg``
     (from midships, + forward) and ``zg`` (above the baseline) [m], ``mass`` [kg], quadratic roll
-    damping ``b44q`` (N_AMPLITUDES,) [N m s^2/rad^2] against the running roll amplitude, the wave heading as ``cos_beta``, ``sin_beta``, the inertia
-    tensor about G in body axes ``inertia`` (3, 3) [kg m^2], the ``added_mass`` and linear
-    ``damping`` (6, 6) of the generalized coordinates (surge, sway, heave of G, roll, pitch, yaw)
+    damping ``b44q`` (N_AMPLITUDES,) [N m s^2/rad^2] against the running roll amplitude, the wave
+    heading as ``cos_beta``, ``sin_beta``, the inertia tensor about G in body axes ``inertia``
+    (3, 3) [kg m^2], the ``added_mass`` and linear ``damping`` (6, 6) of the generalized coordinates
+    (surge, sway, heave of G, roll, pitch, yaw)
     [kg, kg m^2; N s/m, N m s/rad] and ``free`` (6,): 1 for a free coordinate, 0 for a held one.
     """
 
@@ -293,10 +301,7 @@ def initial_state(sec: Sections, st: xr.Dataset, phi0_deg: float = 0.0) -> np.nd
     h0, th0, _ = equilibrium(sec, V, lcg, kg)
     h, th = (h0, th0) if phi0 == 0.0 else equilibrium(sec, V, lcg, kg, heel=phi0, guess=(h0, th0))[:2]
     s = np.zeros(K.N_STATE)
-    # G's height from the origin's: z_G = h - sin(theta) x_G + cos(theta) cos(phi) z_G,body
-    s[K.S_Z] = h - np.sin(th) * lcg + np.cos(th) * np.cos(phi0) * kg
-    s[K.S_ROLL] = phi0
-    s[K.S_PITCH] = th
+    s[:6] = coordinates_from_origin(h, phi0, th, lcg, kg)
     s[K.S_AMP] = s[K.S_PEAK] = abs(phi0)  # released from phi0: the first half-cycle's amplitude
     return s
 

@@ -43,6 +43,17 @@ def origin_height(p: np.ndarray, q) -> float:
     return float(K._origin_height(q[K.S_Z], q[K.S_ROLL], q[K.S_PITCH], p[K.P_XG], p[K.P_ZG]))
 
 
+def coordinates_from_origin(h: float, phi: float, theta: float, xg: float, zg: float) -> np.ndarray:
+    """Generalized coordinates (6,) for the body origin at earth height ``h`` [m], heel ``phi`` and
+    trim ``theta`` [rad]: z_G = h - sin(theta) x_G + cos(theta) cos(phi) z_G,body (the inverse of
+    :func:`origin_height`), G over the frame's origin, no yaw."""
+    q = np.zeros(6)
+    q[K.S_Z] = h - np.sin(theta) * xg + np.cos(theta) * np.cos(phi) * zg
+    q[K.S_ROLL] = phi
+    q[K.S_PITCH] = theta
+    return q
+
+
 def generalized_system(p: np.ndarray, state, loads) -> tuple[np.ndarray, np.ndarray]:
     """(M (6, 6) [kg, kg m^2], r (6,) [N, N m]) of M q'' = r at ``state`` (N_STATE,) with the FK + HS
     ``loads`` (6,) (force and moment about G in the heading frame), all coordinates free."""

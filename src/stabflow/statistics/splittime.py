@@ -138,30 +138,27 @@ def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t
     return bool(last < n1 or abs(buf[last, S_ROLL]) > cap), last
 
 
-def critical_perturbations(model: Model, records, steps, sides, window: int, dmax_deg: float, tol_deg: float,
-                           threads: int = 1, progress: bool = False, levels=None):
+def critical_perturbations(model: Model, records, steps, sides, levels, window: int, dmax_deg: float,
+                           tol_deg: float, threads: int = 1, progress: bool = False):
     """Critical roll-rate perturbation [deg/s] for each crossing (record, step before the crossing,
     side +1/-1). Crossings of one record share its regenerated seaway; records run in parallel
     threads (the RK4 kernel releases the GIL).
 
-    With ``levels`` (the crossed roll angle of each crossing [deg]) the perturbation is applied to
-    the exact state at the crossing instant (:func:`crossing_state`) and the perturbed run returns
-    to the time grid with a sub-step of the rest of that step; without, to the state at the step
-    before. Returns (delta [deg/s], bisection runs, roll rate at the crossing [deg/s], crossing
-    time [s]) per crossing (the last two NaN without ``levels``)."""
+    ``levels`` is the crossed roll angle of each crossing [deg] (signed). The perturbation is applied
+    to the exact state at the crossing instant (:func:`crossing_state`) and the perturbed run returns
+    to the time grid with a sub-step of the rest of that step (:func:`perturbed_run`). Returns
+    (delta [deg/s], bisection runs, roll rate at the crossing [deg/s], crossing time [s]) per
+    crossing."""
     from tqdm import tqdm
 
-    args = kernel_args(model.sec, model.tables)
     records = np.asarray(records)
     steps = np.asarray(steps)
     sides = np.asarray(sides)
+    levels = np.asarray(levels, float)
     delta = np.full(len(records), np.nan)
     runs = np.zeros(len(records), np.int64)
     rate_at = np.full(len(records), np.nan)
     t_at = np.full(len(records), np.nan)
-    cap = np.radians(90.0)
-    nofo = np.empty((0, 6))
-    dt = model.dt
 
     def one_record(r):
         idx = np.nonzero(records == r)[0]
@@ -172,19 +169,11 @@ def critical_perturbations(model: Model, records, steps, sides, window: int, dma
         for c in idx:
             n0 = int(steps[c])
             n1 = min(n0 + window, model.nsteps)
-            if levels is None:
-                s0, tc = states[n0].copy(), None
-            else:
-                tc, s0 = crossing_state(model, comps, states, n0, np.radians(levels[c]))
-                rate_at[c], t_at[c] = abs(np.degrees(s0[S_RATE + S_ROLL])), tc
+            tc, s0 = crossing_state(model, comps, states, n0, np.radians(levels[c]))
+            rate_at[c], t_at[c] = abs(np.degrees(s0[S_RATE + S_ROLL])), tc
 
             def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c], tc=tc):
-                if tc is not None:  # from the crossing instant, back onto the grid at step n0 + 1
-                    return perturbed_run(model, comps, wtab, s0, tc, n0, n1, side, d, buf)[0]
-                s = s0.copy()
-                s[S_RATE + S_ROLL] += side * np.radians(d)
-                last = _simulate(*args, model.p, wtab, dt, n0, n1, s, cap, buf, nofo)
-                return last < n1 or abs(buf[last, S_ROLL]) > cap
+                return perturbed_run(model, comps, wtab, s0, tc, n0, n1, side, d, buf)[0]
 
             delta[c], runs[c] = bisect_critical(capsizes, dmax_deg, tol_deg)
         return len(idx)
@@ -236,15 +225,11 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
         j = thresholds.index(thr)
         m = (ens["crossing_threshold"].values == j) & np.isin(ens["crossing_record"].values, sample)
         rec = ens["crossing_record"].values[m]
-        t = ens["crossing_time"].values[m]
-        rate_u = np.abs(ens["crossing_roll_rate"].values[m])
         side = ens["crossing_side"].values[m]
         step = ens["crossing_step"].values[m]
-        delta, runs, rate_x, t_x = critical_perturbations(model, rec, step, side, window, cfg["max_perturbation"],
-                                                          cfg["tolerance"], threads, progress,
-                                                          levels=side * float(thr))
         # the metric uses the roll rate of the exact state at the crossing (the perturbed state)
-        rate_u, t = rate_x, t_x
+        delta, runs, rate_u, t = critical_perturbations(model, rec, step, side, side * float(thr), window,
+                                                        cfg["max_perturbation"], cfg["tolerance"], threads, progress)
         y = np.where(np.isfinite(delta), rate_u / (rate_u + delta), rate_u / (rate_u + cfg["max_perturbation"]))
         # declustering: same threshold, same record, closer than tau; keep the largest metric
         # (decluster() keeps cluster maxima of values above a level: use y + 1 > 0)

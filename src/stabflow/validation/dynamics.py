@@ -402,17 +402,17 @@ def ikeda_vs_simplified(ship: Ship, sec: Sections, st: xr.Dataset, co: Coefficie
     Froude number of ``IKEDA_FROUDE``, at the natural roll frequency of ``co``. Returns ``ratio``
     (len(IKEDA_FROUDE),) and ``out_of_range`` (the regression's violated limits)."""
     from stabflow.dynamics import roll_damping as rd
+    from stabflow.dynamics.model import ikeda_inputs
 
     sp = rd.section_parameters(sec, st)
     hp = rd.particulars(sp)
-    keels = ship.data.get("bilge_keels")
-    bk = rd.BilgeKeels.from_config(keels) if keels else None
-    omega = float(np.sqrt(co.c44 / (co.i44 + co.a44)))
+    kw = ikeda_inputs(ship)
+    bk = kw["bilge_keels"]
+    omega = co.natural_frequency("roll")
     ratios, out = [], ""
     for fn in IKEDA_FROUDE:
         u = fn * np.sqrt(G * hp.length)
-        c = rd.ikeda_components(sp, omega=omega, roll_amplitude_deg=IKEDA_AMPLITUDE, speed=u, bilge_keels=bk,
-                                normal_force=ship.data["dynamics"].get("ikeda_normal_force", "kato"))
+        c = rd.ikeda_components(sp, omega=omega, roll_amplitude_deg=IKEDA_AMPLITUDE, speed=u, **kw)
         sm = rd.simplified_ikeda(hp.length, hp.breadth, hp.draft, hp.cb, hp.cm, hp.og, omega=omega,
                                  roll_amplitude_deg=IKEDA_AMPLITUDE, speed=u, bk_span=bk.span if bk else 0.0,
                                  bk_length=bk.length if bk else 0.0, rho=ship.rho)
