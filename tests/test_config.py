@@ -58,6 +58,29 @@ def test_pipeline_configs_valid():
         assert load_pipeline(ROOT / "config" / f)["ships"]
 
 
+def test_validation_profile_merges_into_a_valid_config(tmp_path):
+    """config/validation.yaml is an overlay (snakemake --configfile): merged over config.yaml as
+    Snakemake merges (mappings recursively, lists replaced) it validates, analyses three DTMB 5415
+    loadings and adds 1-DOF severities."""
+    import yaml
+
+    def merge(a, b):
+        out = dict(a)
+        for k, v in b.items():
+            out[k] = merge(a[k], v) if isinstance(v, dict) and isinstance(a.get(k), dict) else v
+        return out
+
+    base = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    over = yaml.safe_load((ROOT / "config" / "validation.yaml").read_text())
+    p = tmp_path / "merged.yaml"
+    p.write_text(yaml.safe_dump(merge(base, over)))
+    cfg = load_pipeline(p)
+    keys = {f"{c['ship']}_{c['name']}" for c in cfg["ensembles"]}
+    assert len(cfg["splittime"]["conditions"]) == 3 and set(cfg["splittime"]["conditions"]) <= keys
+    assert set(cfg["extremes"]["conditions"]) <= keys
+    assert all(len(b["sigma_deg"]) == 4 == len(b["bruteforce_hours"]) for b in cfg["capsize_1dof"]["bands"])
+
+
 @pytest.mark.parametrize("text", ["8.6e6", "8.6E6", "8.6e+6", "86e5", "8600000.0"])
 def test_scientific_notation_is_a_number(tmp_path, ship_file, text):
     """YAML 1.1 (PyYAML) reads 8.6e6 as a string; stabflow reads every config number as YAML 1.2

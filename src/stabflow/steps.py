@@ -379,3 +379,26 @@ def run_splittime(ship_yaml, cond: dict, ensemble_nc, cfg: dict, out_nc, figures
                           f"{a['speed_kn']:g} kn, heading {a['heading_deg']:g}°")
     write_netcdf(ds, out_nc)
     return ds
+
+
+#: key of the 1-DOF capsize case in results/validation/<key>_capsize.nc
+CAPSIZE_1DOF_KEY = "box1dof"
+
+
+def run_capsize_1dof(cfg: dict, out_nc, validation_nc, figure=None, threads: int = 1, progress: bool = True) -> xr.Dataset:
+    """capsize_1dof step: 1-DOF box-barge roll, brute force and independent samples of split-time and
+    extremes estimates → NetCDF, validation rows (coverage, median ratio, threshold consistency), figure."""
+    from stabflow.io import write_netcdf
+    from stabflow.plots.capsize_1dof import capsize_1dof_figure
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.capsize_1dof import analyse, capsize_1dof_checks
+
+    if not cfg.get("bands"):
+        raise StabflowError("config: capsize_1dof: bands is empty: nothing to run")
+    ds = analyse(cfg, threads=threads, progress=progress)
+    rows = checks_dataset(CAPSIZE_1DOF_KEY, "capsize", capsize_1dof_checks(ds))
+    if figure:
+        capsize_1dof_figure(ds, figure)
+    write_netcdf(ds, out_nc)
+    write_netcdf(rows, validation_nc)
+    return ds

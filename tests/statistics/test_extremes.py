@@ -1,29 +1,9 @@
-"""Extremes: GPD fit, declustering (against pyextremes), rates and the block validation."""
+"""Extremes: declustering (against pyextremes), capsizes as censored clusters, block estimates."""
 
 import numpy as np
 import pandas as pd
-import pytest
-from scipy import stats
 
-from stabflow.statistics.extremes import decluster, exceedance_rate, gpd_mle, pyextremes_fit, timeline
-
-
-def test_gpd_fit_recovers_known_parameters():
-    """5000 GPD samples (xi = 0.1, sigma = 3 deg) above u = 10 deg: pyextremes' MLE and the scipy
-    refit used by the bootstrap agree and recover both parameters within 3 standard errors
-    (asymptotic: se(xi) = (1 + xi) / sqrt(n), se(sigma) = sigma sqrt(2 (1 + xi) / n))."""
-    xi, sig, u, n = 0.1, 3.0, 10.0, 5000
-    x = u + stats.genpareto.rvs(xi, scale=sig, size=n, random_state=3)
-    rec = np.arange(n) // 10
-    t = (np.arange(n) % 10) * 150.0
-    eva = pyextremes_fit(x, rec, t, u, 100.0, 1800.0)
-    c, s = eva.model.fit_parameters["c"], eva.model.fit_parameters["scale"]
-    assert abs(c - xi) < 3 * (1 + xi) / np.sqrt(n)
-    assert abs(s - sig) < 3 * sig * np.sqrt(2 * (1 + xi) / n)
-    c2, s2 = gpd_mle(x - u)
-    assert c2 == pytest.approx(c, abs=1e-3) and s2 == pytest.approx(s, rel=1e-3)
-    # rate above x = n / hours * survival
-    assert exceedance_rate([u + 5.0], u, n, 100.0, c, s)[0] == pytest.approx(n / 100 * stats.genpareto.sf(5, c, scale=s))
+from stabflow.statistics.extremes import block_estimates, decluster, record_maxima, timeline
 
 
 def test_declustering_keeps_one_peak_per_cluster_and_matches_pyextremes():
@@ -57,25 +37,30 @@ def test_declustering_keeps_one_peak_per_cluster_and_matches_pyextremes():
     np.testing.assert_allclose(np.sort(eva.extremes.to_numpy()), np.sort(mx))
 
 
-def test_failed_fit_is_nan_not_zero():
-    """Too few exceedances (or a failed fit) give NaN parameters and NaN rates, never a rate of 0."""
-    xi, sig = gpd_mle(np.array([0.5, 1.0]))
-    assert np.isnan(xi) and np.isnan(sig)
-    r = exceedance_rate([12.0, 15.0], 10.0, 2, 100.0, xi, sig)
-    assert np.all(np.isnan(r))
+def test_capsized_record_is_one_censored_cluster():
+    """Peaks of a record that capsized at t = 1000 s: those within tau before the capsize join the
+    capsize's cluster (a right-censored maximum, not returned); earlier ones and other records stay."""
+    rec = np.array([0, 0, 0, 1, 1])
+    t = np.array([100.0, 950.0, 990.0, 950.0, 990.0])
+    v = np.array([30.0, 60.0, 80.0, 31.0, 32.0])
+    mx, mr, mt = record_maxima(rec, t, v, 20.0, 100.0, [0], [1000.0])
+    assert sorted(zip(mr.tolist(), mx.tolist())) == [(0, 30.0), (1, 32.0)]
 
 
-def test_bootstrap_interval_ranks_unfittable_resamples_lowest():
-    """Resamples with too few exceedances (-inf) rank below the fitted ones: a few of them leave the
-    lower bound determined; past alpha/2 it is undetermined (NaN), never 0. Failed fits (NaN) are
-    left out and counted."""
-    from stabflow.statistics.extremes import bootstrap_interval
-
-    fitted = np.linspace(1.0, 2.0, 97)[:, None]
-    boots = np.vstack([fitted, [[-np.inf]], [[-np.inf]], [[np.nan]]])
-    lo, hi, few, failed = bootstrap_interval(boots, 0.05)
-    assert few == 2 and failed == 1
-    assert np.isfinite(lo[0]) and 1.0 <= lo[0] < 1.1 and hi[0] == pytest.approx(np.quantile(boots[:99], 0.975))
-    boots = np.vstack([fitted[:90], np.full((10, 1), -np.inf)])
-    lo, hi, few, failed = bootstrap_interval(boots, 0.05)
-    assert np.isnan(lo[0]) and np.isfinite(hi[0]) and few == 10
+def test_block_estimates_cover_a_known_tail_and_fail_honestly():
+    """Peaks drawn so that cluster maxima above u = 10 deg are u + GPD(0, 2): the rate of maxima
+    beyond 20 deg (100 clusters per 100 h) is held by the interval at two thresholds; a block with
+    fewer than 3 exceedances gives NaN, never a rate of 0."""
+    rng = np.random.default_rng(5)
+    n = 100
+    rec = np.arange(n)
+    t = np.full(n, 500.0)
+    v = 10.0 + rng.exponential(2.0, n)
+    R, LO, HI, XI, NU, fixed = block_estimates(rec, t, v, np.zeros(0, int), np.zeros(0), rec, 100.0, [10.0, 11.0],
+                                               np.array([20.0]), 100.0, 0.05, 0)
+    truth = 1.0 * np.exp(-10.0 / 2.0)
+    assert np.all(LO[:, 0] <= truth) and np.all(truth <= HI[:, 0])
+    assert fixed[0, 0] >= LO[0, 0] and fixed[1, 0] <= HI[0, 0]
+    R2, LO2, HI2, *_ = block_estimates(rec[:2], t[:2], v[:2], np.zeros(0, int), np.zeros(0), rec[:2], 2.0, [10.0],
+                                       np.array([20.0]), 100.0, 0.05, 0)
+    assert np.isnan(R2).all() and np.isnan(LO2).all()

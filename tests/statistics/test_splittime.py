@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from stabflow.statistics.splittime import bisect_critical, capsize_probability, crossing_rate, poisson_interval
+from stabflow.statistics.splittime import (bisect_critical, crossing_metric, crossing_rate, decluster_metric, metric_rate,
+                                           poisson_interval)
 
 
 def _softening_capsizes(phi0, rate0, w=0.5, phiv=1.0, dt=0.002, T=40.0):
@@ -46,18 +47,53 @@ def test_crossing_rate_eq2_and_intervals():
     assert r == 0.01 and lo == pytest.approx(0.0047954, rel=1e-3) and hi == pytest.approx(0.0183904, rel=1e-3)
 
 
-def test_capsize_probability_from_gpd_tail():
-    """Metrics drawn as u + GPD(xi < 0) with a fraction above u: P(y >= 1) recovers the exact
-    value n_u / n * GPD survival(1 - u) within sampling error."""
+def test_bisection_below_the_crossing_rate_when_the_unperturbed_motion_capsizes():
+    """Same oscillator, crossing rate above the separatrix's: the unperturbed motion capsizes, so
+    the bisection searches [-rate, 0] and the critical rate rate + delta (< rate) is again the
+    separatrix rate: the metric rate / (rate + delta) > 1, continuous across capsizing. A motion
+    that capsizes even at zero rate returns delta = -rate."""
+    w, phiv, phi0 = 0.5, 1.0, 0.4
+    V = w**2 * (phi0**2 / 2 - phi0**4 / (4 * phiv**2))
+    crit = np.sqrt(2 * (w**2 * phiv**2 / 4 - V))
+    rate_u = 1.3 * crit
+    delta, runs = bisect_critical(lambda d: _softening_capsizes(phi0, rate_u + d, w, phiv), 2.0, 1e-3, dmin=-rate_u)
+    assert delta < 0 and delta + rate_u == pytest.approx(crit, abs=2e-3)
+    y, kind = crossing_metric([rate_u], [delta], 2.0)
+    assert y[0] == pytest.approx(1.3, rel=2e-3) and kind[0] == 0
+    assert bisect_critical(lambda d: True, 1.0, 1e-3, dmin=-0.5) == (-0.5, 2)
+
+
+def test_crossing_metric_kinds_and_declustering():
+    """Exact metrics (below and above 1), left-censored where the bracket never capsized (bound at
+    the largest perturbation), right-censored where even zero rate capsizes; a cluster takes the
+    kind of its maximum."""
+    y, kind = crossing_metric([2.0, 2.0, 2.0, 2.0], [2.0, np.inf, -0.5, -2.0], 6.0)
+    np.testing.assert_allclose(y[:3], [0.5, 0.25, 2.0 / 1.5])
+    assert np.isinf(y[3]) and list(kind) == [0, -1, 0, 1]
+    yc, kc, rc, tc = decluster_metric([0, 0, 1, 1], [10.0, 20.0, 10.0, 500.0], y, kind, 100.0)
+    # record 0: one cluster (max 0.5, exact); record 1: two clusters (exact 1.33, right-censored inf)
+    assert len(yc) == 3
+    np.testing.assert_allclose(yc[:2], [0.5, 2.0 / 1.5])
+    assert list(kc) == [0, 0, 1]
+
+
+def test_metric_rate_with_censored_metrics_against_known_tail():
+    """Declustered metrics: 600 below u = 0.5 (100 of them left-censored below 0.3), 400 above from
+    u + GPD(-0.2, 0.15); P(y >= 1) = 0.4 S(0.5) = 0.4 x 0.0325. Over 1000 h the estimated rate
+    lies within its profile interval's reach of the truth and the interval holds it."""
     rng = np.random.default_rng(2)
-    n, frac, u, xi, sig = 20000, 0.3, 0.5, -0.2, 0.15
-    body = rng.uniform(0.0, u, int(n * (1 - frac)))
-    tail = u + stats.genpareto.rvs(xi, scale=sig, size=int(n * frac), random_state=rng)
+    xi, sig, u = -0.2, 0.15, 0.5
+    body = rng.uniform(0.0, u, 600)
+    tail = u + stats.genpareto.rvs(xi, scale=sig, size=400, random_state=rng)
     y = np.concatenate([body, tail])
-    p, xh, sh, nu = capsize_probability(y, u)
-    exact = frac * stats.genpareto.sf(1 - u, xi, scale=sig)
-    assert p == pytest.approx(exact, rel=0.3)
-    assert xh == pytest.approx(xi, abs=0.05)
+    kind = np.zeros(len(y), np.int8)
+    kind[:100] = -1
+    y[:100] = 0.3
+    out = metric_rate(y, kind, 1000.0, 0.6, 0.05)
+    truth = 1000 / 1000.0 * 0.4 * stats.genpareto.sf(1 - u, xi, scale=sig)
+    assert out["lower"] <= truth <= out["upper"]
+    assert out["rate"] == pytest.approx(truth, rel=0.5)
+    assert out["lower_fixed"] >= out["lower"] and out["upper_fixed"] <= out["upper"]
 
 
 def test_crossing_state_matches_a_fine_step_reference():
@@ -107,9 +143,9 @@ def test_crossing_state_matches_a_fine_step_reference():
 def test_figure_runs_and_bisection_share_one_perturbed_run():
     """The critical perturbation found by the bisection capsizes the run drawn for paper 003 Fig. 4
     from the same crossing (barge, beam sea of config/test.yaml: 18.86 deg/s at the first 10 deg
-    crossing, capsize within 1.5 roll periods). Noticed: 0.9 of it also capsizes, later (after a
-    full swing, within the 3-period window), so the capsizing perturbations are not one interval
-    and the bisection's monotonic bracket is an assumption (issue 16)."""
+    crossing, capsize within 1.5 roll periods; runs followed until capsize or return, 3 periods at
+    most). Noticed: 0.9 of it also capsizes, later (after a full swing), so the capsizing
+    perturbations are not one interval and the bisection's monotonic bracket is an assumption."""
     from stabflow.config import load_pipeline, load_ship
     from stabflow.dynamics._kernels import S_ROLL
     from stabflow.statistics.ensemble import build_model, simulate_record
@@ -124,7 +160,7 @@ def test_figure_runs_and_bisection_share_one_perturbed_run():
     roll = np.degrees(states[: last + 1, S_ROLL])
     n0 = int(np.nonzero((roll[:-1] < level) & (roll[1:] >= level))[0][0])
     window = int(round(3 * model.roll_period / model.dt))
-    delta, runs, rate, tc = critical_perturbations(model, [0], [n0], [1], [level], window, 30.0, 0.01)
+    delta, runs, rate, tc, und = critical_perturbations(model, [0], [n0], [1], [level], window, 30.0, 0.01, 0.05)
     d = float(delta[0])
     assert np.isfinite(d) and d > 0 and rate[0] > 0 and n0 * model.dt < tc[0] < (n0 + 1) * model.dt
     t, base, (below, at) = perturbed_histories(model, 0, n0, 1, [0.9 * d, d], window, level)

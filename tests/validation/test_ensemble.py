@@ -238,17 +238,21 @@ def test_with_step_datasets_rows_are_appended(model, ens):
 
 def test_rows_from_the_steps_own_datasets(model, ens):
     """The rows read the real datasets of extremes.analyse and splittime.analyse (test profile, half-
-    hour samples of the 6 records): two rows per target and threshold, no NaN without a reason.
-    The brute force of the split-time step sees no capsize in records 2-5: every row says so."""
+    hour samples of the 6 records): two independent rows and one threshold-consistency row per
+    target, two rows per split-time threshold and one consistency row, no NaN without a reason.
+    The brute force of the split-time step sees no capsize in records 2-5: every comparison row
+    says so."""
     cfg = load_pipeline(ROOT / "config" / "test.yaml")
     ex, _ = extremes.analyse(ens, dict(cfg["extremes"], sample_hours=0.5))
     sp = splittime.analyse(model, ens, dict(cfg["splittime"], sample_hours=0.5))
     rows = extremes_checks(ex)
-    assert len(rows) == 2 * ex.sizes["target"]
+    assert len(rows) == 3 * ex.sizes["target"]
     for c in rows:
-        assert c.status in ("PASS", "FAIL") and c.kind == "independent"
+        assert c.status in ("PASS", "FAIL") and c.kind == ("consistency" if "other thresholds" in c.check
+                                                           else "independent")
         assert np.isfinite(c.value) or (c.status == "FAIL" and c.reason), c
     assert int(sp["bruteforce_capsizes"]) == 0
     rows = splittime_checks(sp)
-    assert len(rows) == 2 * sp.sizes["split_threshold"]
-    assert all(c.status == "FAIL" and "counted no capsize" in c.reason for c in rows)
+    assert len(rows) == 2 * sp.sizes["split_threshold"] + 1
+    assert all(c.status == "FAIL" and "counted no capsize" in c.reason for c in rows[:-1])
+    assert rows[-1].kind == "consistency" and np.isfinite(rows[-1].value)

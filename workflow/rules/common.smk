@@ -117,7 +117,16 @@ def validation_files():
         + per_ship(f"{RESULTS}/validation/{{ship}}_waves.nc")
         + per_ship(f"{RESULTS}/validation/{{ship}}_dynamics.nc")
         + [f"{RESULTS}/validation/{k}_ensemble.nc" for k in ENSEMBLES]
+        + capsize_1dof_outputs("validation")
     )
+
+
+def capsize_1dof_outputs(which="nc"):
+    """The 1-DOF capsize case's results when capsize_1dof.bands is not empty (none otherwise)."""
+    if not config["capsize_1dof"]["bands"]:
+        return []
+    return {"nc": [f"{RESULTS}/capsize_1dof/box1dof.nc"],
+            "validation": [f"{RESULTS}/validation/box1dof_capsize.nc"]}[which]
 
 
 def report_sources():
@@ -135,5 +144,6 @@ def all_outputs():
         + [f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES]
         + [f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]]
         + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]
+        + capsize_1dof_outputs()
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )

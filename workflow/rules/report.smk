@@ -12,6 +12,7 @@ rule report:
         ensembles=[f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES],
         extremes=[f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]],
         splittime=[f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]],
+        capsize_1dof=capsize_1dof_outputs(),
         source=report_sources(),
     output:
         html=f"{RESULTS}/report/html/index.html",

@@ -460,3 +460,133 @@ def _simulate_batch(xs, dx, ys, zs, npts, tab, lim, p, wtabs, dt, nsteps, s0, ph
     nofo = np.empty((0, 6))
     for r in prange(wtabs.shape[0]):
         last[r] = _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtabs[r], dt, 0, nsteps, s0, phi_cap, out[r], nofo)
+
+
+# --- 1-DOF roll in Gaussian excitation (the analytic-grade capsize case, issue 16) ------------------
+# phi'' + 2 zeta w0 phi' + w0^2 r(phi) = w0^2 e(t): r = GZ / GM tabulated on 0 <= phi <= phi_max (odd),
+# e the excitation as an equivalent static heel [rad], sampled with its derivative on the time grid
+# and cubic-Hermite interpolated between samples (RK4's mid-step value and any off-grid time).
+# Parameters: q = (w0 [rad/s], zeta [-], dphi of the table [rad]).
+
+
+@njit(cache=True, nogil=True)
+def _r1_excitation(rng, n, phi, chol_q, chol_s, out):
+    """Exact discretisation of the linear filter state X = (e, e') at spacing dt: X_0 ~ N(0, Sigma),
+    X_{i+1} = Phi X_i + w_i, w_i ~ N(0, Q), Q = Sigma - Phi Sigma Phi^T (Cholesky factors given;
+    ``rng`` a numpy Generator, two standard normals per sample)."""
+    z0 = rng.standard_normal()
+    z1 = rng.standard_normal()
+    out[0, 0] = chol_s[0, 0] * z0
+    out[0, 1] = chol_s[1, 0] * z0 + chol_s[1, 1] * z1
+    for i in range(1, n):
+        z0 = rng.standard_normal()
+        z1 = rng.standard_normal()
+        a = out[i - 1, 0]
+        b = out[i - 1, 1]
+        out[i, 0] = phi[0, 0] * a + phi[0, 1] * b + chol_q[0, 0] * z0
+        out[i, 1] = phi[1, 0] * a + phi[1, 1] * b + chol_q[1, 0] * z0 + chol_q[1, 1] * z1
+
+
+@njit(cache=True, inline="always")
+def _r1_restoring(x, tab, dphi):
+    a = abs(x) / dphi
+    i = min(int(a), len(tab) - 2)
+    v = tab[i] + (a - i) * (tab[i + 1] - tab[i])
+    return v if x >= 0 else -v
+
+
+@njit(cache=True, inline="always")
+def _r1_acc(x, v, e, q, tab):
+    return -2.0 * q[1] * q[0] * v - q[0] * q[0] * (_r1_restoring(x, tab, q[2]) - e)
+
+
+@njit(cache=True, inline="always")
+def _r1_rk4(x, v, e0, em, e1, dt, q, tab):
+    """One RK4 step of the roll equation with the excitation at the start, middle and end."""
+    k1x = v
+    k1v = _r1_acc(x, v, e0, q, tab)
+    k2x = v + 0.5 * dt * k1v
+    k2v = _r1_acc(x + 0.5 * dt * k1x, k2x, em, q, tab)
+    k3x = v + 0.5 * dt * k2v
+    k3v = _r1_acc(x + 0.5 * dt * k2x, k3x, em, q, tab)
+    k4x = v + dt * k3v
+    k4v = _r1_acc(x + dt * k3x, k4x, e1, q, tab)
+    return (x + dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x),
+            v + dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v))
+
+
+@njit(cache=True, inline="always")
+def _r1_hermite(exc, i, s, h):
+    """Cubic Hermite between samples i and i + 1 (spacing h) at the fraction s."""
+    s2 = s * s
+    s3 = s2 * s
+    return ((2 * s3 - 3 * s2 + 1) * exc[i, 0] + (s3 - 2 * s2 + s) * h * exc[i, 1]
+            + (-2 * s3 + 3 * s2) * exc[i + 1, 0] + (s3 - s2) * h * exc[i + 1, 1])
+
+
+@njit(cache=True, inline="always")
+def _r1_exc_at(exc, dt, t):
+    """Excitation at time t [s]."""
+    i = min(int(t / dt), exc.shape[0] - 2)
+    return _r1_hermite(exc, i, t / dt - i, dt)
+
+
+@njit(cache=True, inline="always")
+def _r1_grid_step(exc, k, dt, x, v, q, tab):
+    """RK4 step k -> k + 1 on the grid (samples at the ends, Hermite at the middle)."""
+    return _r1_rk4(x, v, exc[k, 0], _r1_hermite(exc, k, 0.5, dt), exc[k + 1, 0], dt, q, tab)
+
+
+@njit(cache=True, nogil=True)
+def _r1_substep(exc, dt, t0, tau, x, v, q, tab):
+    """RK4 step of length tau from time t0 (off the grid)."""
+    return _r1_rk4(x, v, _r1_exc_at(exc, dt, t0), _r1_exc_at(exc, dt, t0 + 0.5 * tau),
+                   _r1_exc_at(exc, dt, t0 + tau), tau, q, tab)
+
+
+@njit(cache=True, nogil=True)
+def _r1_run(exc, dt, n0, n1, x, v, q, tab, cap, out):
+    """Integrate from grid step n0 (state x, v) to n1, storing (roll, rate) in ``out`` (unless it has
+    no rows); stops after the first step with |roll| > cap. Returns the last step done."""
+    keep = out.shape[0] > 0
+    if keep:
+        out[n0, 0] = x
+        out[n0, 1] = v
+    for k in range(n0, n1):
+        x, v = _r1_grid_step(exc, k, dt, x, v, q, tab)
+        if keep:
+            out[k + 1, 0] = x
+            out[k + 1, 1] = v
+        if abs(x) > cap:
+            return k + 1
+    return n1
+
+
+@njit(cache=True, nogil=True)
+def _r1_perturbed(exc, dt, base, base_last, n0, tc, x, v, q, tab, cap, ret, nmax):
+    """Follow a perturbed state (x, v) at time tc (between grid steps n0 and n0 + 1) until it capsizes
+    (|roll| > cap: returns 1), returns to the unperturbed solution ``base`` (distance
+    sqrt(dx^2 + (dv / w0)^2) below ``ret`` at a grid step: returns 0) or reaches step ``nmax``
+    (returns -1). Beyond ``base_last`` (the unperturbed run capsized) there is nothing to return to."""
+    x, v = _r1_substep(exc, dt, tc, (n0 + 1) * dt - tc, x, v, q, tab)
+    k = n0 + 1
+    while True:
+        if abs(x) > cap:
+            return 1
+        if k <= base_last:
+            dx = x - base[k, 0]
+            dv = (v - base[k, 1]) / q[0]
+            if dx * dx + dv * dv < ret * ret:
+                return 0
+        if k >= nmax:
+            return -1
+        x, v = _r1_grid_step(exc, k, dt, x, v, q, tab)
+        k += 1
+
+
+@njit(cache=True, nogil=True)
+def _r1_record_last(rng, nsteps, dt, phi, chol_q, chol_s, q, tab, cap, exc):
+    """Brute force of one record from rest: its excitation into ``exc`` (the same draws as
+    ``_r1_excitation``), then RK4 until capsize; returns the last step done (< nsteps: capsized)."""
+    _r1_excitation(rng, nsteps + 1, phi, chol_q, chol_s, exc)
+    return _r1_run(exc, dt, 0, nsteps, 0.0, 0.0, q, tab, cap, np.empty((0, 2)))

@@ -9,7 +9,7 @@ from stabflow.plots._style import atomic_savefig, plt
 
 
 def threshold_diagnostics(series, tau: float, u: float, sigma: float, path, title: str = ""):
-    """Mean residual life and GPD parameter stability (pyextremes) of the first sample's envelope
+    """Mean residual life and GPD parameter stability (pyextremes) of the first sample's |roll|
     peaks, thresholds 1.5-5 sigma; the chosen threshold dashed."""
     from pyextremes import plot_mean_residual_life, plot_parameter_stability
 
@@ -49,7 +49,7 @@ def exceedance_rate_curve(extra: dict, targets, path, title: str = ""):
         ax.axvline(x, color="0.6", lw=0.6)
     ax.set_xlim(extra["u"], extra["x"][-1])
     ax.set_ylim(max(0.3 / extra["bf_hours_all"], 1e-6), None)
-    ax.set_xlabel("roll envelope peak x [deg]")
+    ax.set_xlabel("|roll| cluster maximum x [deg]")
     ax.set_ylabel("rate of independent exceedances λ(x) [1/h]")
     ax.grid(alpha=0.3, which="both")
     ax.legend()

@@ -37,13 +37,13 @@ def _open(path) -> xr.Dataset:
 
 def _fmt(v, spec: str | None = None) -> str:
     """The report's number format (the templates' ``num`` filter): ``format(v, spec)`` for a format spec
-    such as ``".2f"``, ``"g"`` or ``".0%"``; without one four significant digits (exponent from 1e5) and
+    such as ``".2f"``, ``"g"`` or ``".0%"``; without one four significant digits (exponent from 1e5);
     "–" for a value that is not finite."""
     v = float(v)
-    if spec is not None:
-        return format(v, spec)
     if not np.isfinite(v):
         return "–"
+    if spec is not None:
+        return format(v, spec)
     return f"{v:.4g}" if abs(v) < 1e5 else f"{v:.4e}"
 
 
@@ -197,8 +197,11 @@ def _extremes_data(results: Path, k: str, figdir: Path) -> dict | None:
         d, d0 = x.sel(target=tg), first.sel(target=tg)
         targets.append({"target": float(tg), "rate": float(d0.rate_estimate), "lower": float(d0.rate_lower),
                         "upper": float(d0.rate_upper), "bruteforce": float(d0.rate_bruteforce),
-                        "median_ratio": float(d.rate_ratio.median()), "coverage": float(d.coverage)})
-    return {**{a: x.attrs[a] for a in ("envelope", "declustering", "fit", "interval")},
+                        "median_ratio": float(d.rate_ratio.median()), "coverage": float(d.coverage),
+                        "consistency": float(d.threshold_consistency) if "threshold_consistency" in d else np.nan,
+                        "share": float(np.nanmedian(d.extrapolation_share.values))
+                        if "extrapolation_share" in d and np.isfinite(d.extrapolation_share.values).any() else np.nan})
+    return {**{a: x.attrs[a] for a in ("peaks", "declustering", "fit", "interval")},
             "decorrelation_time": float(x.decorrelation_time), "sample_hours": float(first.sample_hours),
             "ensemble_hours": float(x.attrs["ensemble_hours"]), "blocks": x.sizes["block"], "targets": targets,
             "figures": _optional_figures(results, figdir, f"extremes/{k}_{{}}.png",
@@ -217,13 +220,39 @@ def _splittime_data(results: Path, k: str, figdir: Path) -> dict | None:
         rows.append({"threshold": float(th), "crossings": int(d.crossings), "clusters": int(d.clusters),
                      "probability": float(d.capsize_probability), "rate": float(d.capsize_rate_splittime),
                      "lower": float(d.capsize_rate_lower), "upper": float(d.capsize_rate_upper),
-                     "inside": bool(int(d.inside))})
+                     "inside": bool(int(d.inside)), "reported": bool(int(d.reported)) if "reported" in d else False,
+                     "share": float(d.extrapolation_share) if "extrapolation_share" in d else np.nan,
+                     "undecided": int(d.undecided_runs) if "undecided_runs" in d else 0})
     return {"sample_hours": float(st.sample_hours), "bruteforce_capsizes": int(st.bruteforce_capsizes),
             "bruteforce_hours": float(st.bruteforce_hours), "bruteforce_rate": float(st.capsize_rate_bruteforce),
             "bruteforce_lower": float(st.capsize_rate_bruteforce_lower),
             "bruteforce_upper": float(st.capsize_rate_bruteforce_upper), "thresholds": rows,
             "figures": _optional_figures(results, figdir, f"splittime/{k}_{{}}.png",
                                          ("crossings", "perturbation", "metric", "rate"))}
+
+
+def _capsize_1dof_data(results: Path, figdir: Path) -> dict | None:
+    """The 1-DOF capsize case (brute force, coverage and median ratios per method); None if not run."""
+    p = results / "capsize_1dof" / "box1dof.nc"
+    if not p.exists():
+        return None
+    d = _open(p)
+    rows = []
+    for case in d.case.values:
+        c = d.sel(case=case)
+        rows.append({"case": str(case), "sigma": float(c.excitation_std), "roll_std": float(c.roll_std),
+                     "bf": float(c.capsize_rate_bruteforce), "bf_lower": float(c.capsize_rate_bruteforce_lower),
+                     "bf_upper": float(c.capsize_rate_bruteforce_upper), "bf_k": int(c.bruteforce_capsizes),
+                     "bf_hours": float(c.bruteforce_hours),
+                     "sample_capsizes": float(c.sample_capsizes.mean()),
+                     **{f"{m}_{q}": float(c[f"{m}_{q}"]) for m in ("splittime", "extremes")
+                        for q in ("coverage", "median_ratio", "threshold_consistency")},
+                     **{f"{m}_share": float(np.nanmedian(c[f"{m}_extrapolation_share"].values))
+                        if np.isfinite(c[f"{m}_extrapolation_share"].values).any() else np.nan
+                        for m in ("splittime", "extremes")}})
+    return {"rows": rows, "attrs": dict(d.attrs), "avs": float(d.vanishing_angle), "period": float(d.roll_period),
+            "samples": int(d.sizes["sample"]),
+            "figure": _optional_figures(results, figdir, "capsize_1dof/{}.png", ("box1dof",))["box1dof"]}
 
 
 def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
@@ -242,15 +271,17 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
                            "splittime": _splittime_data(results, k, figdir),
                            "figures": _optional_figures(results, figdir, f"ensemble/{k}/{{}}.png",
                                                         ("roll_distribution", "spectra", "time_histories"))})
-    if not conditions:
+    one_dof = _capsize_1dof_data(results, figdir)
+    if not conditions and one_dof is None:
         return None
-    return _render("rare_events.md.j2", conditions=conditions)
+    return _render("rare_events.md.j2", conditions=conditions, one_dof=one_dof)
 
 
 #: validation steps in report order: (step attribute, title, file suffix)
 STEPS = [("statics", "Calm-water statics", "statics"), ("waves", "Stability in waves and metric C", "waves"),
          ("dynamics", "Time domain (3-DOF)", "dynamics"),
-         ("ensemble", "Irregular seas: seaways, step size, extremes, split-time", "ensemble")]
+         ("ensemble", "Irregular seas: seaways, step size, extremes, split-time", "ensemble"),
+         ("capsize", "Capsize-rate methods against brute force (1-DOF box barge)", "capsize")]
 
 
 def validation_rows(results: Path, expected: dict[str, list[tuple[str, str]]]) -> dict[str, list[dict]]:
@@ -330,10 +361,11 @@ def _plain(obj):
 
 def expected_validation(ships: list[str], config: dict) -> dict:
     """The validation files a run must have: statics, waves and dynamics per ship, ensemble per
-    ensemble condition."""
+    ensemble condition, the 1-DOF capsize case when configured."""
     ens = [(f"{c['ship']}_{c['name']}", c["ship"]) for c in config.get("ensembles", [])]
+    one_dof = [("box1dof", "box1dof")] if config.get("capsize_1dof", {}).get("bands") else []
     return {"statics": [(s, s) for s in ships], "waves": [(s, s) for s in ships], "dynamics": [(s, s) for s in ships],
-            "ensemble": ens}
+            "ensemble": ens, "capsize": one_dof}
 
 
 def build_report(results: str | Path, ships: list[str], config: dict, source: str | Path, out_html: str | Path) -> Path:

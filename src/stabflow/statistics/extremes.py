@@ -1,26 +1,28 @@
-"""Extreme roll: Hilbert-envelope peaks over a threshold, GPD fit (pyextremes), rates of exceedance.
+"""Extreme roll: peaks of |roll| over a threshold, Poisson-GPD fit, rates of roll beyond x.
 
-The ensemble step stores, for every record, the peaks of the roll envelope |phi + i H[phi]|
-(Hilbert transform, ``ensemble.envelope``) above a floor, with their times. This step:
+The ensemble step stores, for every record, the peaks of roll and the troughs (local extremes of
+roll beyond a floor), with their times, and whether and when the record capsized. This step works on
+|roll| peaks, the roll process itself (the Hilbert-envelope peaks the ensemble also stores were the
+basis before: they run above the roll peaks, and on the default condition their intervals covered the
+brute-force rate of roll > 50 deg in 76 % of samples; they are no longer used):
 
 1. Decorrelation time tau: the lag after which the envelope of the ensemble roll autocorrelation
    stays below 0.05 (paper 003, section 5; ``signals.decorrelation_time``).
-2. Time axis for pyextremes: records are independent, so they are *not* joined into one continuous
-   series. Record r, time t maps to ``EPOCH + r (T_rec + gap) + t`` with a gap of 2 tau + 60 s
-   between records: pyextremes' declustering window (r = tau) can never join peaks of two records,
-   and rates are computed with the simulated exposure (records x T_rec), never the span of that
-   artificial axis.
-3. Peaks over the threshold u (``threshold_sigma`` x the sample's own roll sigma), declustered by
-   pyextremes (``get_extremes('POT', r=tau)``: one maximum per cluster), generalized Pareto fit by
-   maximum likelihood (``fit_model('MLE', 'genpareto')``, location fixed at u).
-4. Rate of exceeding x: lambda(x) = (n_u / hours) * GPD survival(x - u). Confidence intervals by
-   bootstrap over records (resample the sample's records with replacement, refit the GPD with the
-   same maximum likelihood — scipy.stats.genpareto, which pyextremes wraps — and recount n_u):
-   this carries both the Poisson count and the parameter uncertainty.
+2. Threshold u = ``threshold_sigma`` x the sample's own roll sigma (documented rule); the estimate is
+   repeated at every one of ``threshold_sigmas`` to show the consistency across thresholds, and the
+   first sample's threshold diagnostics (mean residual life, parameter stability; pyextremes) are
+   drawn.
+3. Declustering (``decluster``): runs within each record, window tau (same clusters as pyextremes'
+   POT with r = tau, tested); a capsized record's last cluster is a right-censored maximum (roll
+   beyond the capsize angle), its peaks within tau before the capsize join it.
+4. Poisson-GPD maximum likelihood and profile-likelihood intervals (``statistics.tail``): rate of
+   cluster maxima beyond x, lambda(x) = lambda_u S(x - u), with the Poisson count, the exceedance
+   probability and both GPD parameters in the interval. The same interval with the shape fixed gives
+   the share of the uncertainty due to the shape (the extrapolation).
 
-Validation: the sample is a block of records (e.g. 100 h); the brute-force rate is counted directly
-from the cluster maxima of all other records of the same ensemble (same threshold, same
-declustering). Repeating over independent blocks gives the coverage of the interval.
+Validation: the sample is a block of records (e.g. 100 h); the brute-force rate counts the clusters
+with maxima beyond x (capsizes included) among all other records of the same ensemble (same
+threshold and declustering). Repeating over independent blocks gives the coverage of the interval.
 """
 
 from __future__ import annotations
@@ -28,11 +30,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import xarray as xr
-from scipy import stats
 
 from stabflow.statistics.signals import decorrelation_time
 from stabflow.io import annotate
-from stabflow.statistics.intervals import record_bootstrap
+from stabflow.statistics.tail import shape_share
 
 EPOCH = pd.Timestamp("2000-01-01")
 
@@ -41,12 +42,6 @@ def timeline(record: np.ndarray, time: np.ndarray, duration: float, gap: float) 
     """Map (record, time [s]) onto pyextremes' datetime axis (records separated by ``gap`` [s])."""
     sec = record.astype(float) * (duration + gap) + time
     return EPOCH + pd.to_timedelta(np.round(sec * 1000).astype(np.int64), unit="ms")
-
-
-def record_of(index: pd.DatetimeIndex, duration: float, gap: float) -> np.ndarray:
-    """Inverse of ``timeline`` for the record index."""
-    sec = (index - EPOCH).total_seconds().to_numpy()
-    return np.floor(sec / (duration + gap)).astype(np.int64)
 
 
 def decluster(rec, t, v, u: float, tau: float):
@@ -74,81 +69,51 @@ def decluster(rec, t, v, u: float, tau: float):
     return v[k], rec[k], t[k]
 
 
-def pyextremes_fit(values, records, times, u: float, tau: float, duration: float):
-    """GPD fit by pyextremes (MLE, location fixed at u) of declustered maxima placed on the
-    ``timeline`` axis; returns the EVA object (``eva.model.fit_parameters``: c = xi, scale)."""
-    from pyextremes import EVA
-
-    gap = 2 * tau + 60.0
-    idx = timeline(np.asarray(records), np.asarray(times), duration, gap)
-    ex = pd.Series(np.asarray(values, float), index=idx).sort_index()
-    eva = EVA(ex)
-    eva.set_extremes(ex, method="POT", extremes_type="high", threshold=u, r=pd.Timedelta(seconds=tau))
-    eva.fit_model("MLE", distribution="genpareto")
-    return eva
+def record_maxima(rec, t, v, u: float, tau: float, cap_rec, cap_t):
+    """Cluster maxima of |roll| peaks ``v`` above ``u`` (runs declustering, window ``tau`` [s], within
+    records); records ``cap_rec`` capsized at ``cap_t``: their peaks within tau before the capsize
+    belong to the capsize's cluster, which is not among the returned maxima. Returns (maxima,
+    records, times)."""
+    rec, t, v = np.asarray(rec), np.asarray(t, float), np.asarray(v, float)
+    if len(cap_rec):
+        ct = dict(zip(np.asarray(cap_rec).tolist(), np.asarray(cap_t, float).tolist()))
+        lim = np.array([ct.get(r, np.inf) for r in rec.tolist()]) - tau
+        keep = t < lim
+        rec, t, v = rec[keep], t[keep], v[keep]
+    return decluster(rec, t, v, u, tau)
 
 
 #: fewest exceedances for a GPD fit
 MIN_EXCEEDANCES = 3
+#: roll beyond this is a capsize (the ensemble's capsize angle) [deg]
+CAPSIZE_DEG = 90.0
 
 
-def gpd_mle(excess: np.ndarray) -> tuple[float, float]:
-    """(shape xi, scale sigma) of the GPD of ``excess`` (> 0), maximum likelihood, location 0.
-    (NaN, NaN) when there are fewer than ``MIN_EXCEEDANCES`` or the optimiser fails."""
-    if len(excess) < MIN_EXCEEDANCES:
-        return np.nan, np.nan
-    try:
-        c, _, scale = stats.genpareto.fit(excess, floc=0.0)
-    except (RuntimeError, ValueError, FloatingPointError):
-        return np.nan, np.nan
-    if not (np.isfinite(c) and np.isfinite(scale) and scale > 0):
-        return np.nan, np.nan
-    return float(c), float(scale)
+def block_estimates(data_rec, data_t, data_v, cap_rec, cap_t, recs, hours, u_list, targets, tau, alpha, report):
+    """Rates at ``targets`` [deg] for each threshold of ``u_list`` from the block ``recs``: (rates,
+    lowers, uppers, shapes, exceedances) each of shape (thresholds, targets), and the fixed-shape
+    (lower, upper) at threshold ``report``."""
+    from stabflow.statistics.tail import TailData, profile_interval
 
-
-def exceedance_rate(x, u, n_u, hours, xi, sigma):
-    """lambda(x) = n_u / hours * P(X > x | X > u) [1/h] for x >= u (exact counts below the
-    threshold are not modelled). NaN where the GPD could not be fitted (``xi`` NaN): a failed fit
-    is never a rate of zero."""
-    x = np.asarray(x, float)
-    if not np.isfinite(xi):
-        return np.full_like(x, np.nan)
-    return n_u / hours * stats.genpareto.sf(np.maximum(x - u, 0.0), xi, scale=sigma)
-
-
-def bootstrap_interval(boots: np.ndarray, alpha: float):
-    """Percentile interval of bootstrap rates, rows = resamples. Resamples with too few exceedances
-    to fit (-inf) rank below every fitted one (fewer exceedances, lower rates): when they reach the
-    alpha/2 quantile the lower bound is undetermined (NaN). Fits that failed otherwise (NaN) are
-    left out. Returns (lower, upper, resamples too few, resamples failed)."""
-    few = np.isneginf(boots[:, 0])
-    failed = np.isnan(boots[:, 0])
-    ok = boots[~failed]
-    if len(ok) == 0:
-        n = boots.shape[1]
-        return np.full(n, np.nan), np.full(n, np.nan), int(few.sum()), int(failed.sum())
-    with np.errstate(invalid="ignore"):  # interpolating next to -inf: undetermined, made NaN below
-        lo, hi = np.quantile(ok, [alpha / 2, 1 - alpha / 2], axis=0)
-    lo = np.where(np.isfinite(lo), lo, np.nan)
-    hi = np.where(np.isfinite(hi), hi, np.nan)
-    return lo, hi, int(few.sum()), int(failed.sum())
-
-
-def estimate(maxima, recs, block_records, u, hours, xs, n_boot: int, alpha: float, rng):
-    """Rates at ``xs`` from one sample's cluster maxima, with bootstrap-over-records intervals.
-    Returns (xi, sigma, n_u, rate, lo, hi, resamples with too few exceedances, failed fits)."""
-    exc = maxima - u
-    xi, sig = gpd_mle(exc)
-    rate = exceedance_rate(xs, u, len(exc), hours, xi, sig)
-    boots = np.empty((n_boot, len(xs)))
-    for b, (_, e) in enumerate(record_bootstrap(rng, block_records, exc, recs, n_boot)):
-        if len(e) < MIN_EXCEEDANCES:
-            boots[b] = -np.inf
+    inb = np.isin(data_rec, recs)
+    cb = np.isin(cap_rec, recs)
+    nu, nt = len(u_list), len(targets)
+    R, LO, HI, XI = (np.full((nu, nt), np.nan) for _ in range(4))
+    NU = np.zeros(nu, np.int64)
+    fixed = np.full((2, nt), np.nan)
+    for i, u in enumerate(u_list):
+        mx, _, _ = record_maxima(data_rec[inb], data_t[inb], data_v[inb], u, tau, cap_rec[cb], cap_t[cb])
+        data = TailData(mx, hours, right=np.full(int(cb.sum()), CAPSIZE_DEG))
+        NU[i] = len(mx) + int(cb.sum())
+        if NU[i] < MIN_EXCEEDANCES:
             continue
-        bx, bs = gpd_mle(e)
-        boots[b] = exceedance_rate(xs, u, len(e), hours, bx, bs)
-    lo, hi, few, failed = bootstrap_interval(boots, alpha)
-    return xi, sig, len(exc), rate, lo, hi, few, failed
+        for j, x in enumerate(targets):
+            r = profile_interval(data, u, x, alpha)
+            R[i, j], LO[i, j], HI[i, j], XI[i, j] = r.rate, r.lower, r.upper, r.fit.xi
+            if i == report:
+                f = profile_interval(data, u, x, alpha, xi=r.fit.xi, fitted=None)
+                fixed[:, j] = f.lower, f.upper
+    return R, LO, HI, XI, NU, fixed
 
 
 def block_sigma(ens: xr.Dataset, records: np.ndarray) -> float:
@@ -173,75 +138,94 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
     if nblocks < 1:
         raise ValueError(f"ensemble has {len(rec_all)} records, fewer than one sample of {per_block}")
     targets = np.asarray(cfg["targets_deg"], float)
-    rng = np.random.default_rng(int(cfg["seed"]))
-    er, et, ev = (ens[f"envelope_peak_{k}"].values for k in ("record", "time", "value"))
+    sigmas = sorted(set([float(x) for x in cfg["threshold_sigmas"]] + [float(cfg["threshold_sigma"])]))
+    rep = sigmas.index(float(cfg["threshold_sigma"]))
+    alpha = float(cfg["alpha"])
+    pr, pt = ens["peak_record"].values, ens["peak_time"].values.astype(float)
+    pv = np.abs(ens["peak_value"].values.astype(float))
+    capd = ens["capsized"].values.astype(bool)
+    cap_rec, cap_t = rec_all[capd], ens["capsize_time"].values[capd]
     rows = []
     extra = {}
-    it = tqdm(range(nblocks), desc="extremes blocks", disable=not progress)
-    for b in it:
+    for b in tqdm(range(nblocks), desc="extremes blocks", disable=not progress):
         recs = rec_all[b * per_block: (b + 1) * per_block]
-        inb = np.isin(er, recs)
         hours = float(hours_rec[np.isin(rec_all, recs)].sum())
         sig = block_sigma(ens, recs)
-        u = cfg["threshold_sigma"] * sig
-        mx, mr, mt = decluster(er[inb], et[inb], ev[inb], u, tau)
-        # the first sample also gets its curve on a grid for the figure (same bootstrap resamples)
-        xg = np.linspace(u, max(targets.max(), u) * 1.15, 60) if b == 0 else np.zeros(0)
-        xi, sc, n_u, rate, lo, hi, few, failed = estimate(mx, mr, recs, u, hours, np.concatenate([targets, xg]),
-                                                          int(cfg["n_boot"]), cfg["alpha"], rng)
-        nt = len(targets)
-        r_g, lo_g, hi_g = rate[nt:], lo[nt:], hi[nt:]
-        rate, lo, hi = rate[:nt], lo[:nt], hi[:nt]
-        if b == 0 and n_u >= MIN_EXCEEDANCES:
-            # the reported fit of the first sample is pyextremes' own (the bootstrap refits use
-            # scipy.stats.genpareto, the same maximum likelihood)
-            eva = pyextremes_fit(mx, mr, mt, u, tau, duration)
-            xi, sc = (float(eva.model.fit_parameters[k]) for k in ("c", "scale"))
-            rate = exceedance_rate(targets, u, n_u, hours, xi, sc)
-        # brute force: same threshold and declustering on every other record
-        out = ~inb
-        bmx, _, _ = decluster(er[out], et[out], ev[out], u, tau)
+        u_list = [k * sig for k in sigmas]
+        R, LO, HI, XI, NU, fixed = block_estimates(pr, pt, pv, cap_rec, cap_t, recs, hours, u_list, targets, tau,
+                                                   alpha, rep)
+        # brute force: same threshold and declustering on every other record; capsizes beyond every target
+        out = ~np.isin(pr, recs)
+        oc = ~np.isin(cap_rec, recs)
+        bmx, _, _ = record_maxima(pr[out], pt[out], pv[out], u_list[rep], tau, cap_rec[oc], cap_t[oc])
         bf_hours = float(hours_rec[~np.isin(rec_all, recs)].sum())
-        bf = np.array([(bmx > x).sum() for x in targets]) / bf_hours
-        rows.append(dict(u=u, sigma=sig, xi=xi, scale=sc, n_u=n_u, hours=hours, rate=rate, lo=lo, hi=hi, bf=bf,
-                         bf_hours=bf_hours, few=few, failed=failed))
+        bf = np.array([(bmx > x).sum() + oc.sum() for x in targets]) / bf_hours
+        rows.append(dict(u=u_list[rep], u_all=np.array(u_list), sigma=sig, xi=XI[rep, 0], n_u=NU[rep], hours=hours,
+                         rate=R[rep], lo=LO[rep], hi=HI[rep], rate_all=R, lo_all=LO, hi_all=HI, fixed_lo=fixed[0],
+                         fixed_hi=fixed[1], bf=bf, bf_hours=bf_hours, capsizes=int(np.isin(cap_rec, recs).sum())))
         if b == 0:
-            allmx, _, _ = decluster(er, et, ev, u, tau)
+            from stabflow.statistics.tail import TailData, profile_interval
+
+            u = u_list[rep]
+            inb = np.isin(pr, recs)
+            cb = np.isin(cap_rec, recs)
+            mx, _, _ = record_maxima(pr[inb], pt[inb], pv[inb], u, tau, cap_rec[cb], cap_t[cb])
+            xg = np.linspace(u, max(targets.max(), u) * 1.15, 40)
+            curve = np.full((3, len(xg)), np.nan)
+            if len(mx) + cb.sum() >= MIN_EXCEEDANCES:
+                data = TailData(mx, hours, right=np.full(int(cb.sum()), CAPSIZE_DEG))
+                for j, x in enumerate(xg):
+                    r = profile_interval(data, u, x, alpha)
+                    curve[:, j] = r.rate, r.lower, r.upper
+            allmx, _, _ = record_maxima(pr, pt, pv, u, tau, cap_rec, cap_t)
             gap = 2 * tau + 60.0
-            sample = pd.Series(ev[inb], index=timeline(er[inb], et[inb], duration, gap)).sort_index()
-            extra = dict(x=xg, rate=r_g, lo=lo_g, hi=hi_g, bf_maxima=np.sort(allmx), bf_hours_all=float(hours_rec.sum()),
-                         sample_series=sample[~sample.index.duplicated()], u=u, tau=tau, hours=hours)
+            sample = pd.Series(pv[inb], index=timeline(pr[inb], pt[inb], duration, gap)).sort_index()
+            extra = dict(x=xg, rate=curve[0], lo=curve[1], hi=curve[2],
+                         bf_maxima=np.sort(np.concatenate([allmx, np.full(int(capd.sum()), CAPSIZE_DEG)])),
+                         bf_hours_all=float(hours_rec.sum()), sample_series=sample[~sample.index.duplicated()], u=u,
+                         tau=tau, hours=hours)
     R = {k: np.array([r[k] for r in rows]) for k in rows[0]}
     inside = (R["lo"] <= R["bf"]) & (R["bf"] <= R["hi"])
+    # consistency: the other thresholds' estimates inside the reported threshold's interval
+    ra = R["rate_all"]
+    consistent = np.all((ra >= R["lo"][:, None, :]) & (ra <= R["hi"][:, None, :]), axis=1)
+    share = shape_share(R["lo"], R["hi"], R["fixed_lo"], R["fixed_hi"])
     ds = xr.Dataset(
         {
             "decorrelation_time": ((), tau),
             "threshold": ("block", R["u"]),
+            "thresholds": (("block", "threshold_sigma"), R["u_all"]),
             "sample_roll_std": ("block", R["sigma"]),
             "gpd_shape": ("block", R["xi"]),
-            "gpd_scale": ("block", R["scale"]),
             "n_exceedances": ("block", R["n_u"]),
             "sample_hours": ("block", R["hours"]),
+            "sample_capsizes": ("block", R["capsizes"]),
             "rate_estimate": (("block", "target"), R["rate"]),
             "rate_lower": (("block", "target"), R["lo"]),
             "rate_upper": (("block", "target"), R["hi"]),
+            "rate_estimate_by_threshold": (("block", "threshold_sigma", "target"), ra),
+            "rate_lower_by_threshold": (("block", "threshold_sigma", "target"), R["lo_all"]),
+            "rate_upper_by_threshold": (("block", "threshold_sigma", "target"), R["hi_all"]),
+            "rate_lower_fixed_shape": (("block", "target"), R["fixed_lo"]),
+            "rate_upper_fixed_shape": (("block", "target"), R["fixed_hi"]),
+            "extrapolation_share": (("block", "target"), share),
             "rate_bruteforce": (("block", "target"), R["bf"]),
             "bruteforce_hours": ("block", R["bf_hours"]),
-            "bootstrap_too_few": ("block", R["few"]),
-            "bootstrap_failed": ("block", R["failed"]),
             "inside": (("block", "target"), inside.astype(np.int8)),
             "coverage": ("target", inside.mean(axis=0)),
+            "threshold_consistency": ("target", consistent.mean(axis=0)),
             "rate_ratio": (("block", "target"), np.where(R["bf"] > 0, R["rate"] / np.where(R["bf"] > 0, R["bf"], 1), np.nan)),
         },
-        coords={"block": np.arange(nblocks), "target": targets},
+        coords={"block": np.arange(nblocks), "target": targets, "threshold_sigma": sigmas},
     )
-    ds.attrs.update(ship=ens.attrs["ship"], condition=ens.attrs["condition"], envelope="Hilbert transform",
+    ds.attrs.update(ship=ens.attrs["ship"], condition=ens.attrs["condition"],
+                    peaks="|roll| peaks (maxima of roll and of -roll) stored by the ensemble; capsizes right-censored "
+                          f"at {CAPSIZE_DEG:g} deg",
                     declustering="runs within each record, window = decorrelation time (stabflow.statistics.extremes.decluster, "
                                  "tested equal to pyextremes' POT declustering)",
-                    fit="GPD maximum likelihood, location fixed at the threshold: pyextremes (MLE) for the first "
-                        "sample's reported fit, scipy.stats.genpareto (the same likelihood) for the other samples "
-                        "and every bootstrap refit",
-                    interval=f"bootstrap over records, {int(cfg['n_boot'])} resamples, {100 * (1 - cfg['alpha']):g} %",
+                    fit="Poisson-GPD maximum likelihood, threshold at threshold_sigma x the sample's roll sigma "
+                        "(stabflow.statistics.tail); pyextremes draws the threshold diagnostics",
+                    interval=f"profile likelihood {100 * (1 - alpha):g} %",
                     threshold_sigma=float(cfg["threshold_sigma"]), records_per_block=per_block,
                     ensemble_hours=float(hours_rec.sum()))
     return annotate(ds), extra

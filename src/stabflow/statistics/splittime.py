@@ -8,21 +8,30 @@ Rare problem (motion perturbation method)
     For each crossing the record's seaway is regenerated from (master seed, record) and the record
     re-simulated (bit-identical to the ensemble run) up to the RK4 step just before the crossing; an
     RK4 sub-step (Newton-refined length, waves synthesized off the grid) carries that state to the
-    crossing instant (:func:`crossing_state`). There the roll rate is increased by delta (in the
-    direction of the crossing), a sub-step of the rest of the step returns to the time grid
-    and the motion followed in the same waves for ``window_periods`` roll periods; it stops at
-    once if roll passes 90 deg (capsize). The smallest capsizing delta is found by bisection to
-    ``tolerance`` deg/s. Metric: y = phidot_U / phidot_Cr with phidot_Cr = phidot_U + delta, so
-    y = 1 at capsize and the distribution is extrapolated to y = 1 as the seed's text describes
-    (eq. 1 as printed, 1 - phidot_U / phidot_Cr, is 0 at capsize; its complement is used).
+    crossing instant (:func:`crossing_state`). There the roll rate is changed by delta (in the
+    direction of the crossing), a sub-step of the rest of the step returns to the time grid and the
+    motion is followed in the same waves until it capsizes (90 deg) or returns to the unperturbed
+    solution (paper 003: "truncated as soon as a roll angle of 90 degrees is reached or the motion
+    converges to the unperturbed solution"), at most ``follow_periods`` roll periods. The critical
+    delta is found by bisection to ``tolerance`` deg/s: in [0, max_perturbation] when the unperturbed
+    motion survives the crossing, in [-phidot_U, 0] when it capsizes before the next crossing (the
+    critical rate is then below the crossing's). Metric: y = phidot_U / phidot_Cr with
+    phidot_Cr = phidot_U + delta, so y = 1 at the boundary of capsizing, y > 1 for crossings that
+    capsize, and the distribution is extrapolated to y = 1 as the seed's text describes (eq. 1 as
+    printed, 1 - phidot_U / phidot_Cr, is 0 at capsize; its complement is used).
 Declustering
     Crossings of the same threshold in the same record closer than the decorrelation time (roll
     autocorrelation envelope below 0.05) form a cluster; the largest metric is kept.
-Extrapolation
-    GPD fit (maximum likelihood, scipy.stats.genpareto as in the extremes step) to the declustered
-    metric above its ``metric_quantile``; P(capsize | cluster) = (n_u / n) * GPD survival(1 - u)
-    (zero when the fitted upper bound u - sigma / xi lies below 1). Capsize rate
-    lambda_c = (clusters / hours) * P, with a bootstrap-over-records percentile interval.
+Extrapolation and intervals
+    Poisson-GPD maximum likelihood of the declustered metric above its ``metric_quantile``
+    (``statistics.tail``): crossings whose bracket never capsized are left-censored (y below the value
+    at the largest perturbation), not values. Capsize rate = cluster rate x P(y >= 1), with its
+    profile-likelihood interval (cluster count, exceedance probability, GPD scale and shape) and the
+    same interval with the shape fixed (the share of the uncertainty due to the extrapolation).
+Thresholds
+    Every configured threshold is estimated; the reported one is the highest with at least
+    ``min_clusters`` declustered crossings in the sample (documented rule), and the others'
+    estimates are checked against its interval.
 Validation
     The sample is the first ``sample_hours`` of the ensemble; the brute-force rate is the number of
     capsized records among all other records over their exposure (Garwood Poisson interval).
@@ -40,25 +49,34 @@ from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
 from stabflow.dynamics.tables import kernel_args
 from stabflow.statistics.ensemble import Model, simulate_record, wave_table
 from stabflow.waves.synthesis import station_wave_table
-from stabflow.statistics.extremes import decluster, gpd_mle
+from stabflow.statistics.extremes import decluster
+from stabflow.statistics.tail import shape_share
 from stabflow.io import annotate
-from stabflow.statistics.intervals import record_bootstrap
 from stabflow.statistics.signals import decorrelation_time
 
 
-def bisect_critical(capsizes, dmax: float, tol: float) -> tuple[float, int]:
-    """Smallest perturbation in [0, dmax] for which ``capsizes(delta)`` is True, to ``tol``.
+def bisect_critical(capsizes, dmax: float, tol: float, dmin: float = 0.0) -> tuple[float, int]:
+    """Critical perturbation: the smallest delta in [dmin, dmax] for which ``capsizes(delta)`` is
+    True, to ``tol`` (bisection, capsizing assumed monotonic in delta over the bracket).
 
-    Returns (delta, runs); delta = 0 if the unperturbed motion capsizes, inf if even ``dmax`` does
-    not. Assumes capsizing is monotonic in delta over the bracket (checked at both ends).
-    """
+    If the unperturbed motion (delta = 0) does not capsize the bracket is [0, dmax]: inf if even dmax
+    does not capsize. If it does, the critical rate lies below the unperturbed one and the bracket is
+    [dmin, 0] (``dmin`` < 0, e.g. minus the roll rate at the crossing): a negative delta, so the
+    metric exceeds 1 and is continuous across capsizing (paper 003: extrapolate the metric to 1);
+    dmin itself when even dmin capsizes. Returns (delta, runs)."""
     runs = 1
     if capsizes(0.0):
-        return 0.0, runs
-    runs += 1
-    if not capsizes(dmax):
-        return np.inf, runs
-    lo, hi = 0.0, dmax
+        if dmin >= 0.0:
+            return 0.0, runs
+        runs += 1
+        if capsizes(dmin):
+            return dmin, runs
+        lo, hi = dmin, 0.0
+    else:
+        runs += 1
+        if not capsizes(dmax):
+            return np.inf, runs
+        lo, hi = 0.0, dmax
     while hi - lo > tol:
         mid = 0.5 * (lo + hi)
         runs += 1
@@ -119,35 +137,115 @@ def crossing_state(model: Model, components, states: np.ndarray, n0: int, level:
 
 
 def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t_c: float, n0: int, n1: int,
-                  side: int, delta_deg: float, buf: np.ndarray) -> tuple[bool, int]:
+                  side: int, delta_deg: float, buf: np.ndarray, base: np.ndarray | None = None, base_last: int = -1,
+                  ret: float = 0.0) -> tuple[int, int]:
     """Follow the record from the crossing state ``s_c`` at ``t_c`` [s] (between steps n0 and n0 + 1)
     with the roll rate increased by ``side * delta_deg`` [deg/s]: a sub-step of the rest of step n0,
-    then the grid up to step ``n1``; ``buf`` (nsteps + 1, N_STATE) receives the grid states from
-    n0 + 1. Returns (capsized: roll beyond 90 deg, last step done)."""
+    then the grid up to step ``n1`` at most; ``buf`` (nsteps + 1, N_STATE) receives the grid states
+    from n0 + 1.
+
+    With the unperturbed states ``base`` (valid up to ``base_last``) the run stops as soon as it has
+    returned to them: sqrt(droll^2 + (droll_rate / w_roll)^2) below ``ret`` [rad] at a check (every
+    quarter roll period; paper 003: perturbed runs are truncated at 90 deg or when the motion
+    converges to the unperturbed solution). Returns (outcome, last step done): 1 capsized (roll
+    beyond 90 deg), 0 returned, -1 neither by step n1."""
     cap = np.radians(90.0)
     s = s_c.copy()
     s[S_RATE + S_ROLL] += side * np.radians(delta_deg)
     s = sub_step(model, components, s, t_c, (n0 + 1) * model.dt - t_c)
     buf[n0 + 1] = s
-    if abs(s[S_ROLL]) > cap:
-        return True, n0 + 1
-    if n0 + 1 >= n1:
-        return False, n0 + 1
-    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, n0 + 1, n1, s, cap, buf,
-                     np.empty((0, 6)))
-    return bool(last < n1 or abs(buf[last, S_ROLL]) > cap), last
+    k = n0 + 1
+    w = 2 * np.pi / model.roll_period
+    chunk = max(1, int(round(0.25 * model.roll_period / model.dt)))
+    args = kernel_args(model.sec, model.tables)
+    while True:
+        if abs(buf[k, S_ROLL]) > cap:
+            return 1, k
+        if base is not None and k <= base_last:
+            d = np.hypot(buf[k, S_ROLL] - base[k, S_ROLL], (buf[k, S_RATE + S_ROLL] - base[k, S_RATE + S_ROLL]) / w)
+            if d < ret:
+                return 0, k
+        if k >= n1:
+            return -1, k
+        k1 = min(k + chunk, n1)
+        last = _simulate(*args, model.p, wtab, model.dt, k, k1, buf[k].copy(), cap, buf, np.empty((0, 6)))
+        if last < k1:
+            return 1, last
+        k = k1
 
 
-def critical_perturbations(model: Model, records, steps, sides, levels, window: int, dmax_deg: float,
-                           tol_deg: float, threads: int = 1, progress: bool = False):
+def crossing_metric(rate: np.ndarray, delta: np.ndarray, dmax: float) -> tuple[np.ndarray, np.ndarray]:
+    """Metric y = rate / (rate + delta) of crossings (roll rate at the crossing and critical
+    perturbation, same units; paper 003 eq. 1 in the form that is 1 at capsize) and its kind:
+    0 exact (y > 1 where the unperturbed motion capsizes and the critical rate lies below the
+    crossing's); -1 left-censored at rate / (rate + dmax) (no capsize within the bracket); +1 where
+    even zero roll rate at the crossing capsizes (y = inf: at least 1)."""
+    rate = np.abs(np.asarray(rate, float))
+    delta = np.asarray(delta, float)
+    y = np.full(len(rate), np.inf)
+    kind = np.zeros(len(rate), np.int8)
+    fin = np.isfinite(delta) & (rate + delta > 0)
+    y[fin] = rate[fin] / (rate[fin] + delta[fin])
+    cens = ~np.isfinite(delta)
+    y[cens] = rate[cens] / (rate[cens] + dmax)
+    kind[cens] = -1
+    kind[np.isfinite(delta) & ~fin] = 1
+    return y, kind
+
+
+def decluster_metric(rec, t, y, kind, tau: float):
+    """Cluster maxima of crossing metrics (same record, closer than ``tau`` [s]); a cluster takes the
+    kind of its maximum. Returns (y, kind, record, time)."""
+    order = np.lexsort((np.asarray(t, float), np.asarray(rec)))
+    rec, t, y, kind = (np.asarray(a)[order] for a in (rec, t, y, kind))
+    yc, rc, tcl = decluster(rec, t, np.where(np.isinf(y), np.finfo(float).max, y) + 1.0, 0.0, tau)
+    idx = np.array([np.nonzero((rec == r) & (t == tt))[0][0] for r, tt in zip(rc, tcl)], np.int64)
+    return y[idx], kind[idx], rc, tcl
+
+
+def metric_rate(y, kind, hours: float, quantile: float, alpha: float, fixed_shape: bool = True):
+    """Capsize rate from declustered metrics: Poisson-GPD above the metric's ``quantile``
+    (``statistics.tail``; left-censored metrics as such, y = inf right-censored at max(1, u)),
+    rate = cluster rate x P(y >= 1) with its profile-likelihood interval and the interval with the
+    GPD shape fixed (unless ``fixed_shape`` is False: NaN). Returns dict(rate, lower, upper,
+    lower_fixed, upper_fixed, xi, sigma, u, n_u);
+    NaN entries when fewer than 3 metrics exceed u."""
+    from stabflow.statistics.tail import TailData, profile_interval
+
+    y, kind = np.asarray(y, float), np.asarray(kind)
+    out = dict(rate=np.nan, lower=np.nan, upper=np.nan, lower_fixed=np.nan, upper_fixed=np.nan, xi=np.nan,
+               sigma=np.nan, u=np.nan, n_u=0)
+    if len(y) == 0:
+        return out
+    u = float(np.quantile(np.where(np.isinf(y), np.finfo(float).max, y), quantile))
+    u = min(u, 1.0 - 1e-9) if np.all(y[kind == 0] >= 1.0) and np.any(kind == 0) else u
+    data = TailData(y[kind == 0], hours, left=y[kind == -1], right=np.full(int(np.sum(kind == 1)), max(1.0, u)))
+    try:
+        full = profile_interval(data, u, 1.0, alpha)
+        fixed = profile_interval(data, u, 1.0, alpha, xi=full.fit.xi) if fixed_shape else None
+    except ValueError:
+        out["u"] = u
+        return out
+    return dict(rate=full.rate, lower=full.lower, upper=full.upper, lower_fixed=fixed.lower if fixed else np.nan,
+                upper_fixed=fixed.upper if fixed else np.nan,
+                xi=full.fit.xi, sigma=full.fit.sigma, u=u, n_u=full.fit.n_exceed)
+
+
+def critical_perturbations(model: Model, records, steps, sides, levels, follow: int, dmax_deg: float,
+                           tol_deg: float, ret: float, threads: int = 1, progress: bool = False):
     """Critical roll-rate perturbation [deg/s] for each crossing (record, step before the crossing,
-    side +1/-1). Crossings of one record share its regenerated seaway; records run in parallel
-    threads (the RK4 kernel releases the GIL).
+    side +1/-1) of one threshold. Crossings of one record share its regenerated seaway; records run
+    in parallel threads (the RK4 kernel releases the GIL).
 
     ``levels`` is the crossed roll angle of each crossing [deg] (signed). The perturbation is applied
-    to the exact state at the crossing instant (:func:`crossing_state`) and the perturbed run returns
-    to the time grid with a sub-step of the rest of that step (:func:`perturbed_run`). Returns
-    (delta [deg/s], bisection runs, roll rate at the crossing [deg/s], crossing time [s]) per
+    to the exact state at the crossing instant (:func:`crossing_state`); each perturbed run is
+    followed until it capsizes or returns to the unperturbed solution (distance below ``ret`` times
+    the perturbation's, :func:`perturbed_run`), at most ``follow`` steps (then it counts as not
+    capsized; such runs are counted). A run that returns shares the unperturbed outcome: capsized
+    when the unperturbed record capsizes before its next crossing of the threshold, which is also
+    the outcome at delta = 0. The bisection (:func:`bisect_critical`) searches [0, dmax] when the
+    unperturbed record survives the crossing and [-rate, 0] when it capsizes. Returns (delta [deg/s],
+    bisection runs, roll rate at the crossing [deg/s], crossing time [s], undecided runs) per
     crossing."""
     from tqdm import tqdm
 
@@ -157,25 +255,35 @@ def critical_perturbations(model: Model, records, steps, sides, levels, window: 
     levels = np.asarray(levels, float)
     delta = np.full(len(records), np.nan)
     runs = np.zeros(len(records), np.int64)
+    undecided = np.zeros(len(records), np.int64)
     rate_at = np.full(len(records), np.nan)
     t_at = np.full(len(records), np.nan)
+    w = 2 * np.pi / model.roll_period
 
     def one_record(r):
         idx = np.nonzero(records == r)[0]
+        idx = idx[np.argsort(steps[idx], kind="stable")]
         wtab = wave_table(model, int(r))
         comps = model.sea.components(model.cond["seed"], int(r))
-        states, _ = simulate_record(model, int(r), wtab=wtab)
+        states, last = simulate_record(model, int(r), wtab=wtab)
         buf = np.empty((model.nsteps + 1, N_STATE))
-        for c in idx:
+        for j, c in enumerate(idx):
             n0 = int(steps[c])
-            n1 = min(n0 + window, model.nsteps)
+            n1 = min(n0 + follow, model.nsteps)
+            nxt = int(steps[idx[j + 1]]) if j + 1 < len(idx) else np.iinfo(np.int64).max
+            base_caps = bool(last < model.nsteps and last <= nxt)
             tc, s0 = crossing_state(model, comps, states, n0, np.radians(levels[c]))
             rate_at[c], t_at[c] = abs(np.degrees(s0[S_RATE + S_ROLL])), tc
 
-            def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c], tc=tc):
-                return perturbed_run(model, comps, wtab, s0, tc, n0, n1, side, d, buf)[0]
+            def capsizes(d, s0=s0, n0=n0, n1=n1, side=sides[c], tc=tc, base_caps=base_caps, c=c):
+                if d == 0.0:
+                    return base_caps
+                out, _ = perturbed_run(model, comps, wtab, s0, tc, n0, n1, side, d, buf, states, last,
+                                       ret * np.radians(abs(d)) / w)
+                undecided[c] += out < 0
+                return out > 0 or (out == 0 and base_caps)
 
-            delta[c], runs[c] = bisect_critical(capsizes, dmax_deg, tol_deg)
+            delta[c], runs[c] = bisect_critical(capsizes, dmax_deg, tol_deg, dmin=-rate_at[c])
         return len(idx)
 
     todo = np.unique(records)
@@ -183,20 +291,7 @@ def critical_perturbations(model: Model, records, steps, sides, levels, window: 
         for _ in tqdm(ex.map(one_record, todo), total=len(todo), desc="perturbations (records)",
                       disable=not progress, mininterval=10):
             pass
-    return delta, runs, rate_at, t_at
-
-
-def capsize_probability(y, u: float):
-    """(P(Y >= 1), xi, sigma, n_u) from declustered metrics ``y``: GPD fitted to the excesses over
-    ``u`` and evaluated at y = 1 (empirical fraction if fewer than 3 excesses or u >= 1)."""
-    y = np.asarray(y, float)
-    if len(y) == 0:
-        return 0.0, np.nan, np.nan, 0
-    exc = y[y > u] - u
-    if len(exc) < 3 or u >= 1.0:
-        return float(np.mean(y >= 1.0)), np.nan, np.nan, len(exc)
-    xi, sig = gpd_mle(exc)
-    return float(len(exc) / len(y) * stats.genpareto.sf(1.0 - u, xi, scale=sig)), xi, sig, len(exc)
+    return delta, runs, rate_at, t_at, undecided
 
 
 def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress: bool = False) -> xr.Dataset:
@@ -214,9 +309,8 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
     bf_k = int(ens["capsized"].values[~in_s].sum())
     bf_hours = float(ens["steps"].values[~in_s].sum()) * dt / 3600.0
     bf, bf_lo, bf_hi = poisson_interval(bf_k, bf_hours, cfg["alpha"]) if bf_hours > 0 else (np.nan,) * 3
-    window = int(round(cfg["window_periods"] * model.roll_period / dt))
+    follow = int(round(cfg["follow_periods"] * model.roll_period / dt))
     thresholds = list(ens["threshold"].values)
-    rng = np.random.default_rng(int(cfg["seed"]))
     res = []
     cross_rows = []
     for thr in cfg["thresholds_deg"]:
@@ -228,28 +322,21 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
         side = ens["crossing_side"].values[m]
         step = ens["crossing_step"].values[m]
         # the metric uses the roll rate of the exact state at the crossing (the perturbed state)
-        delta, runs, rate_u, t = critical_perturbations(model, rec, step, side, side * float(thr), window,
-                                                        cfg["max_perturbation"], cfg["tolerance"], threads, progress)
-        y = np.where(np.isfinite(delta), rate_u / (rate_u + delta), rate_u / (rate_u + cfg["max_perturbation"]))
-        # declustering: same threshold, same record, closer than tau; keep the largest metric
-        # (decluster() keeps cluster maxima of values above a level: use y + 1 > 0)
-        yc, rc, tc = decluster(rec, t, y + 1.0, 0.0, tau)
-        yc = yc - 1.0
-        u = float(np.quantile(yc, cfg["metric_quantile"])) if len(yc) else 0.0
-        p, xi, sig, n_u = capsize_probability(yc, u)
+        delta, runs, rate_u, t, und = critical_perturbations(model, rec, step, side, side * float(thr), follow,
+                                                             cfg["max_perturbation"], cfg["tolerance"],
+                                                             cfg["return_fraction"], threads, progress)
+        y, kind = crossing_metric(rate_u, delta, cfg["max_perturbation"])
+        # declustering: same threshold, same record, closer than tau; the largest metric is kept
+        yc, kc, rc, tc = decluster_metric(rec, t, y, kind, tau)
+        est = metric_rate(yc, kc, hours, cfg["metric_quantile"], cfg["alpha"])
         lam_cl = len(yc) / hours
-        lam_c = lam_cl * p
         raw, raw_lo, raw_hi = crossing_rate(len(rec), n_samples, dt, cfg["alpha"])
-        # bootstrap over records: clusters, GPD and P refitted
-        boots = np.empty(int(cfg["n_boot"]))
-        for b, (pick, yb) in enumerate(record_bootstrap(rng, sample, yc, rc, len(boots))):
-            hb = float(ens["steps"].sel(record=pick).sum()) * dt / 3600.0
-            ub = float(np.quantile(yb, cfg["metric_quantile"])) if len(yb) else 0.0
-            boots[b] = len(yb) / hb * capsize_probability(yb, ub)[0]
-        lo, hi = np.quantile(boots, [cfg["alpha"] / 2, 1 - cfg["alpha"] / 2])
         res.append(dict(thr=thr, n_cross=len(rec), raw=raw, raw_lo=raw_lo, raw_hi=raw_hi, n_cl=len(yc), lam_cl=lam_cl,
-                        u=u, xi=xi, sig=sig, n_u=n_u, p=p, lam=lam_c, lo=lo, hi=hi, runs=int(runs.sum()),
-                        inside=int(lo <= bf <= hi), capsized_crossings=int(np.sum(delta == 0))))
+                        u=est["u"], xi=est["xi"], sig=est["sigma"], n_u=est["n_u"],
+                        p=est["rate"] / lam_cl if lam_cl > 0 else np.nan, lam=est["rate"], lo=est["lower"],
+                        hi=est["upper"], lo_f=est["lower_fixed"], hi_f=est["upper_fixed"], runs=int(runs.sum()),
+                        undecided=int(und.sum()), inside=int(est["lower"] <= bf <= est["upper"]),
+                        capsized_crossings=int(np.sum(y >= 1.0)), censored=int(np.sum(kind == -1))))
         cross_rows.append((np.full(len(rec), thr), rec, t, side, rate_u, delta, y))
     R = {k: np.array([r[k] for r in res]) for k in res[0]}
     C = [np.concatenate(c) for c in zip(*cross_rows)]
@@ -269,7 +356,11 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
             "capsize_rate_splittime": ("split_threshold", R["lam"]),
             "capsize_rate_lower": ("split_threshold", R["lo"]),
             "capsize_rate_upper": ("split_threshold", R["hi"]),
+            "capsize_rate_lower_fixed_shape": ("split_threshold", R["lo_f"]),
+            "capsize_rate_upper_fixed_shape": ("split_threshold", R["hi_f"]),
             "perturbed_runs": ("split_threshold", R["runs"]),
+            "undecided_runs": ("split_threshold", R["undecided"]),
+            "censored_crossings": ("split_threshold", R["censored"]),
             "capsizing_crossings": ("split_threshold", R["capsized_crossings"]),
             "inside": ("split_threshold", R["inside"]),
             "capsize_rate_bruteforce": ((), bf),
@@ -289,10 +380,22 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
         },
         coords={"split_threshold": np.array(cfg["thresholds_deg"], float)},
     )
-    ds.attrs.update(ship=ens.attrs["ship"], condition=ens.attrs["condition"], window_steps=window,
+    # documented threshold rule: the highest threshold with at least min_clusters clusters in the sample
+    ok = [k for k, n in enumerate(R["n_cl"]) if n >= int(cfg["min_clusters"])]
+    rep = max(ok, key=lambda k: R["thr"][k]) if ok else int(np.argmin(R["thr"]))
+    ds["reported"] = ("split_threshold", (np.arange(len(R["thr"])) == rep).astype(np.int8))
+    ds["threshold_consistent"] = ("split_threshold", ((R["lam"] >= R["lo"][rep]) & (R["lam"] <= R["hi"][rep])).astype(np.int8))
+    ds["extrapolation_share"] = ("split_threshold", shape_share(R["lo"], R["hi"], R["lo_f"], R["hi_f"]))
+    ds.attrs.update(ship=ens.attrs["ship"], condition=ens.attrs["condition"], window_steps=follow,
                     tolerance=float(cfg["tolerance"]), max_perturbation=float(cfg["max_perturbation"]),
-                    interval=f"bootstrap over records, {int(cfg['n_boot'])} resamples", fit="GPD MLE (scipy)",
-                    metric="y = phidot_U / (phidot_U + delta_cr)")
+                    return_fraction=float(cfg["return_fraction"]),
+                    interval=f"profile likelihood {100 * (1 - cfg['alpha']):g} % (cluster count, exceedance "
+                             "probability, GPD scale and shape)",
+                    fit="Poisson-GPD maximum likelihood of the declustered metric, never-capsizing brackets "
+                        "left-censored (stabflow.statistics.tail)",
+                    metric="y = phidot_U / (phidot_U + delta_cr); > 1 where the unperturbed motion capsizes",
+                    threshold_rule=f"reported: the highest threshold with at least {int(cfg['min_clusters'])} "
+                                   "declustered crossings in the sample")
     return annotate(ds)
 
 

@@ -9,7 +9,7 @@
 | ensemble records regenerated from (seed, record) at dt | the ensemble's stored per-record moment sums | 1e-9 (relative) | consistency |
 | step size: roll standard deviation at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 0.5 % | consistency |
 | step size: 0.999 quantile of abs(roll) at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 1 % | consistency |
-| extremes, per target angle: coverage of the brute-force rate by the interval over the samples | brute-force count of the declustered envelope maxima in the rest of the ensemble | >= 0.90 | independent |
+| extremes, per target angle: coverage of the brute-force rate by the interval over the samples | brute-force count of the declustered |roll| maxima (capsizes included) in the rest of the ensemble | >= 0.90 | independent |
 | extremes, per target angle: median over the samples of estimate / brute force | the same brute-force count | 0.7 to 1.4 | independent |
 | split-time, per threshold: brute-force rate inside the interval (1 / 0) | capsized records among the other records (Garwood interval) | = 1 | independent |
 | split-time, per threshold: split-time rate / brute-force rate | the same brute-force count | 0.7 to 1.4 | independent |
@@ -329,7 +329,7 @@ def extremes_checks(extremes: xr.Dataset | None) -> list[Check]:
     lo, hi = RATIO_BAND
     cov_name = "extremes: coverage of the brute-force rate by the {pct} interval over {n} samples"
     rat_name = "extremes: median over the samples of estimate / brute-force rate"
-    ref = "brute-force count of declustered envelope maxima in the rest of the ensemble"
+    ref = "brute-force count of declustered |roll| maxima (capsizes included) in the rest of the ensemble"
     if extremes is None:
         why = "the extremes step does not run for this condition (not in extremes.conditions)"
         return [Check.not_applicable(cov_name.format(pct="95 %", n="N"), why, "-", ref),
@@ -344,7 +344,7 @@ def extremes_checks(extremes: xr.Dataset | None) -> list[Check]:
         return [Check.failed(cov_name.format(pct="95 %", n="N"), why, "-", ref, lower=MIN_COVERAGE),
                 Check.failed(rat_name, why, "-", ref, lower=lo, upper=hi)]
     if np.isfinite(hours):
-        ref = (f"brute-force count of declustered envelope maxima in the records outside each sample "
+        ref = (f"brute-force count of declustered |roll| maxima (capsizes included) in the records outside each sample "
                f"({hours:.1f} h on average)")
     rows = []
     for x in targets:
@@ -382,6 +382,11 @@ def extremes_checks(extremes: xr.Dataset | None) -> list[Check]:
                                      "-", ref, lower=lo, upper=hi))
         else:
             rows.append(Check(rname, float(np.median(ratio[fin])), np.nan, "-", ref, lower=lo, upper=hi))
+        if "threshold_consistency" in extremes:
+            sig = ", ".join(f"{v:g}" for v in extremes["threshold_sigma"].values)
+            rows.append(Check(tag + f"share of samples whose estimates at the other thresholds ({sig} sigma) lie in "
+                            "the reported interval", float(sel["threshold_consistency"]), np.nan, "-",
+                            "the same samples at the other thresholds", kind="consistency", lower=MIN_COVERAGE))
     return rows
 
 
@@ -444,6 +449,13 @@ def splittime_checks(splittime: xr.Dataset | None) -> list[Check]:
             rows.append(Check(rname, lam / bf, np.nan, "-", ref, lower=lo, upper=hi))
         else:
             rows.append(Check.failed(rname, "the split-time capsize rate is NaN", "-", ref, lower=lo, upper=hi))
+    if "reported" in splittime and "threshold_consistent" in splittime:
+        rep = float(thresholds[np.argmax(splittime["reported"].values)])
+        ok = splittime["threshold_consistent"].values.astype(bool)
+        rows.append(Check(f"split-time: thresholds whose estimate lies in the reported {rep:g} deg interval "
+                          f"({int(ok.sum())} of {len(ok)})", float(ok.mean()), np.nan, "-",
+                          f"{splittime.attrs.get('threshold_rule', 'reported threshold')}", kind="consistency",
+                          lower=1.0, upper=1.0))
     return rows
 
 
