@@ -92,7 +92,8 @@ CAPSIZE_DEG = 90.0
 def block_estimates(data_rec, data_t, data_v, cap_rec, cap_t, recs, hours, u_list, targets, tau, alpha, report):
     """Rates at ``targets`` [deg] for each threshold of ``u_list`` from the block ``recs``: (rates,
     lowers, uppers, shapes, exceedances) each of shape (thresholds, targets), and the fixed-shape
-    (lower, upper) at threshold ``report``."""
+    (lower, upper) at threshold ``report``. NaN where a target lies below the threshold or fewer
+    than MIN_EXCEEDANCES exceed it."""
     from stabflow.statistics.tail import TailData, profile_interval
 
     inb = np.isin(data_rec, recs)
@@ -108,6 +109,8 @@ def block_estimates(data_rec, data_t, data_v, cap_rec, cap_t, recs, hours, u_lis
         if NU[i] < MIN_EXCEEDANCES:
             continue
         for j, x in enumerate(targets):
+            if x < u:  # the tail model says nothing below its threshold: NaN, not the rate of u
+                continue
             r = profile_interval(data, u, x, alpha)
             R[i, j], LO[i, j], HI[i, j], XI[i, j] = r.rate, r.lower, r.upper, r.fit.xi
             if i == report:
@@ -160,7 +163,7 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
         bmx, _, _ = record_maxima(pr[out], pt[out], pv[out], u_list[rep], tau, cap_rec[oc], cap_t[oc])
         bf_hours = float(hours_rec[~np.isin(rec_all, recs)].sum())
         bf = np.array([(bmx > x).sum() + oc.sum() for x in targets]) / bf_hours
-        rows.append(dict(u=u_list[rep], u_all=np.array(u_list), sigma=sig, xi=XI[rep, 0], n_u=NU[rep], hours=hours,
+        rows.append(dict(u=u_list[rep], u_all=np.array(u_list), sigma=sig, xi=next((v for v in XI[rep] if np.isfinite(v)), np.nan), n_u=NU[rep], hours=hours,
                          rate=R[rep], lo=LO[rep], hi=HI[rep], rate_all=R, lo_all=LO, hi_all=HI, fixed_lo=fixed[0],
                          fixed_hi=fixed[1], bf=bf, bf_hours=bf_hours, capsizes=int(np.isin(cap_rec, recs).sum())))
         if b == 0:
@@ -188,7 +191,10 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
     inside = (R["lo"] <= R["bf"]) & (R["bf"] <= R["hi"])
     # consistency: the other thresholds' estimates inside the reported threshold's interval
     ra = R["rate_all"]
-    consistent = np.all((ra >= R["lo"][:, None, :]) & (ra <= R["hi"][:, None, :]), axis=1)
+    # (thresholds above a target have no estimate there and are left out)
+    with np.errstate(invalid="ignore"):
+        inside_all = (ra >= R["lo"][:, None, :]) & (ra <= R["hi"][:, None, :])
+    consistent = np.all(inside_all | np.isnan(ra), axis=1) & np.isfinite(R["rate"])
     share = shape_share(R["lo"], R["hi"], R["fixed_lo"], R["fixed_hi"])
     ds = xr.Dataset(
         {
