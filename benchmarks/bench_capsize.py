@@ -63,19 +63,22 @@ def main(argv=None):
     per_hour = t_bf / h
     print(f"  brute force: {k} capsizes in {h:.0f} h = {r:.3g} /h [{lo:.3g}, {hi:.3g}], {t_bf:.1f} s "
           f"({per_hour * 1e3:.3f} ms per simulated hour, 2 threads)")
-    if st_lo > 0 and np.isfinite(st_hi):
-        width = np.log(st_hi / st_lo)
-        kk = 1
-        while garwood_width(kk) > width and kk < 10**7:
-            kk += 1
-        need = kk / r if r > 0 else np.inf
-        why = f"Garwood log-width {width:.2f} needs {kk} capsizes"
-    else:
-        need = 3.69 / st_hi if st_hi > 0 else np.inf
-        why = f"split-time lower bound 0: a capsize-free brute force reaches the upper bound {st_hi:.3g} /h"
-    print(f"  brute force for the same interval: {need:.3g} h ({why}) = {need * per_hour:.1f} s")
-    print(f"  ratio brute-force time / split-time time: {need * per_hour / t_split:.2f}")
-
+    for method, lo_, hi_ in (("split-time", st_lo, st_hi), ("extremes", ex_lo, ex_hi)):
+        if not hi_ > 0:
+            print(f"  {method}: interval [0, 0] rules out every positive rate (brute force {r:.3g} /h): no answer")
+            continue
+        if lo_ > 0 and np.isfinite(hi_):
+            width = np.log(hi_ / lo_)
+            kk = 1
+            while garwood_width(kk) > width and kk < 10**7:
+                kk += 1
+            need = kk / r if r > 0 else np.inf
+            why = f"Garwood log-width {width:.2f} needs {kk} capsizes"
+        else:
+            need = 3.69 / hi_
+            why = f"lower bound 0: a capsize-free brute force reaches the upper bound {hi_:.3g} /h"
+        print(f"  {method}: brute force for the same interval {need:.3g} h ({why}) = {need * per_hour:.1f} s; "
+              f"ratio brute-force time / estimate time {need * per_hour / t_split:.1f}")
 
 if __name__ == "__main__":
     main()
