@@ -210,11 +210,6 @@ class RateInterval:
     fit: TailFit
     level: float
 
-    @property
-    def log_width(self) -> float:
-        """log(upper / lower); inf when the lower bound is 0."""
-        return float(np.log(self.upper / self.lower)) if self.lower > 0 else np.inf
-
 
 @_quiet
 def profile_interval(data: TailData, u: float, x: float, alpha: float = 0.05, xi: float | None = None,

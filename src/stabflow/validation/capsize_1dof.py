@@ -14,18 +14,18 @@ For each band and severity (excitation sigma):
      capsize angle = capsize rate, profile-likelihood interval (``statistics.tail``);
    * split-time (paper 003): up-crossings of +phi_thr and down-crossings of -phi_thr; the exact
      state at each crossing perturbed in roll rate and followed until capsize or return to the
-     unperturbed solution; bisection on the critical perturbation; metric y = rate / (rate + delta)
-     declustered per record, brackets that never capsize are left-censored (y below the value at the
-     largest perturbation); Poisson-GPD fit of the metric above its ``metric_quantile``; capsize
+     unperturbed solution; bisection on the critical perturbation (below the crossing's rate when
+     the record capsizes); metric y = rate / (rate + delta) declustered per record, brackets that
+     never capsize are left-censored (y below the value at the largest perturbation); Poisson-GPD fit of the metric above its ``metric_quantile``; capsize
      rate = cluster rate x P(y >= 1) with the profile-likelihood interval.
 
 3. Coverage (share of samples whose interval holds the brute-force rate) and median ratio
    estimate / brute force per band, severity and method.
 
-Thresholds (documented rule): extremes use the threshold with ``exceedances`` maxima above it (the
-middle of the configured counts is reported; the others show the consistency); split-time reports
-the highest configured threshold (a multiple of the sample's own roll sigma) whose sample holds at least
-``min_clusters`` declustered crossings, and shows the others.
+Thresholds (documented rule): extremes use the thresholds leaving ``exceedances`` maxima above
+them (``report`` is the reported one, the others show the consistency); split-time uses
+``threshold_sigmas`` x the sample's own roll sigma and reports the highest whose sample holds at
+least ``min_clusters`` declustered crossings, showing the others.
 """
 
 from __future__ import annotations
