@@ -38,11 +38,12 @@ def test_declustering_keeps_one_peak_per_cluster_and_matches_pyextremes():
 
 
 def test_capsized_record_is_one_censored_cluster():
-    """Peaks of a record that capsized at t = 1000 s: those within tau before the capsize join the
-    capsize's cluster (a right-censored maximum, not returned); earlier ones and other records stay."""
-    rec = np.array([0, 0, 0, 1, 1])
-    t = np.array([100.0, 950.0, 990.0, 950.0, 990.0])
-    v = np.array([30.0, 60.0, 80.0, 31.0, 32.0])
+    """Peaks of a record that capsized at t = 1000 s: the run of exceedances ending at the capsize
+    (880, 950, 990 s: gaps below tau = 100 s) is the capsize's cluster (right-censored, not
+    returned); the peak at 100 s and the other record's peaks stay."""
+    rec = np.array([0, 0, 0, 0, 1, 1])
+    t = np.array([100.0, 880.0, 950.0, 990.0, 950.0, 990.0])
+    v = np.array([30.0, 70.0, 60.0, 80.0, 31.0, 32.0])
     mx, mr, mt = record_maxima(rec, t, v, 20.0, 100.0, [0], [1000.0])
     assert sorted(zip(mr.tolist(), mx.tolist())) == [(0, 30.0), (1, 32.0)]
 

@@ -65,16 +65,33 @@ def test_bisection_below_the_crossing_rate_when_the_unperturbed_motion_capsizes(
 
 def test_crossing_metric_kinds_and_declustering():
     """Exact metrics (below and above 1), left-censored where the bracket never capsized (bound at
-    the largest perturbation), right-censored where even zero rate capsizes; a cluster takes the
-    kind of its maximum."""
+    the largest perturbation), right-censored where even zero rate capsizes; a NaN (a crossing never
+    analysed) is an error, not a censored value. A cluster keeps its maximum wherever it lies and
+    takes its kind."""
     y, kind = crossing_metric([2.0, 2.0, 2.0, 2.0], [2.0, np.inf, -0.5, -2.0], 6.0)
     np.testing.assert_allclose(y[:3], [0.5, 0.25, 2.0 / 1.5])
     assert np.isinf(y[3]) and list(kind) == [0, -1, 0, 1]
-    yc, kc, rc, tc = decluster_metric([0, 0, 1, 1], [10.0, 20.0, 10.0, 500.0], y, kind, 100.0)
-    # record 0: one cluster (max 0.5, exact); record 1: two clusters (exact 1.33, right-censored inf)
+    with pytest.raises(ValueError, match="NaN"):
+        crossing_metric([2.0], [np.nan], 6.0)
+    # record 0: censored 0.25 first, then exact 0.5 (the maximum, second); record 1: exact 1.33 then
+    # 60 s later the right-censored inf (one cluster, its maximum censored); record 2: censored alone
+    yc, kc, rc, tc = decluster_metric([0, 0, 1, 1, 2], [10.0, 20.0, 10.0, 70.0, 5.0],
+                                      np.array([0.25, 0.5, y[2], y[3], 0.25]), np.array([-1, 0, 0, 1, -1]), 100.0)
     assert len(yc) == 3
-    np.testing.assert_allclose(yc[:2], [0.5, 2.0 / 1.5])
-    assert list(kc) == [0, 0, 1]
+    assert yc[0] == 0.5 and kc[0] == 0 and tc[0] == 20.0
+    assert np.isinf(yc[1]) and kc[1] == 1 and tc[1] == 70.0
+    assert yc[2] == 0.25 and kc[2] == -1
+
+
+def test_metric_rate_keeps_its_threshold_below_one():
+    """With 40 % of the clusters at or beyond y = 1 the metric's 0.7 quantile lies above 1; the
+    threshold is held below 1, so the rate is that of y >= 1 (0.40 /h over 1000 h, in the interval),
+    not of y beyond the quantile."""
+    rng = np.random.default_rng(8)
+    y = np.concatenate([rng.uniform(0.0, 0.99, 600), 1.0 + rng.exponential(0.2, 400)])
+    out = metric_rate(y, np.zeros(len(y), np.int8), 1000.0, 0.7, 0.05, fixed_shape=False)
+    assert out["u"] < 1.0
+    assert out["lower"] <= 0.4 <= out["upper"] and out["rate"] == pytest.approx(0.4, rel=0.05)
 
 
 def test_metric_rate_with_censored_metrics_against_known_tail():

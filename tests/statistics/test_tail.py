@@ -25,6 +25,29 @@ def test_gpd_log_density_and_survival_match_scipy():
     assert gpd_logpdf(np.array([10.0]), -0.5, 1.0)[0] == -np.inf
 
 
+def test_censored_loglikelihood_term_by_term():
+    """The log-likelihood of mixed data with u inside them (values below u, exact excesses, left-
+    censored bounds below and above u, right-censored bounds above u) against the sum written out
+    with scipy: (1 - zeta) below u, zeta g(y - u) exact, 1 - zeta S(c - u) left above u, zeta S(c - u)
+    right."""
+    from stabflow.statistics.tail import _Likelihood
+
+    exact = np.array([0.5, 1.2, 2.3, 3.1, 4.0])
+    left = np.array([0.8, 2.5, 3.5])
+    right = np.array([2.2, 5.0])
+    u, zeta, xi, sig = 2.0, 0.3, -0.2, 1.1
+    L = _Likelihood(TailData(exact, 10.0, left=left, right=right), u)
+    g = stats.genpareto
+    ref = (2 * np.log(1 - zeta) + np.log(1 - zeta)  # exact 0.5, 1.2 and left 0.8: below u
+           + np.sum(np.log(zeta) + g.logpdf(exact[exact > u] - u, xi, scale=sig))
+           + np.sum(np.log(1 - zeta * g.sf(left[left > u] - u, xi, scale=sig)))
+           + np.sum(np.log(zeta) + g.logsf(right - u, xi, scale=sig)))
+    assert L.rest(zeta, xi, sig) == pytest.approx(ref, rel=1e-12)
+    assert L.N == 10 and L.n_exc == 5
+    with pytest.raises(ValueError, match="right-censored"):
+        _Likelihood(TailData(exact, 10.0, right=[1.0]), u)
+
+
 def test_exact_data_fit_equals_scipy_and_pyextremes_maximum_likelihood():
     """Without censoring the likelihood separates: lambda = N / T, zeta = n_u / N and (xi, sigma) the
     GPD maximum likelihood of the excesses, the same as scipy's and pyextremes' (which wraps scipy)."""

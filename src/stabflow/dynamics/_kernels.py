@@ -547,7 +547,9 @@ def _r1_substep(exc, dt, t0, tau, x, v, q, tab):
 @njit(cache=True, nogil=True)
 def _r1_run(exc, dt, n0, n1, x, v, q, tab, cap, out):
     """Integrate from grid step n0 (state x, v) to n1, storing (roll, rate) in ``out`` (unless it has
-    no rows); stops after the first step with |roll| > cap. Returns the last step done."""
+    no rows); stops after the first step with |roll| > cap. Returns the last step done (a capsize on
+    the very last step returns n1, like the 3-DOF ``_simulate``: a record counts as capsized when
+    it stopped early)."""
     keep = out.shape[0] > 0
     if keep:
         out[n0, 0] = x

@@ -71,16 +71,22 @@ def decluster(rec, t, v, u: float, tau: float):
 
 def record_maxima(rec, t, v, u: float, tau: float, cap_rec, cap_t):
     """Cluster maxima of |roll| peaks ``v`` above ``u`` (runs declustering, window ``tau`` [s], within
-    records); records ``cap_rec`` capsized at ``cap_t``: their peaks within tau before the capsize
-    belong to the capsize's cluster, which is not among the returned maxima. Returns (maxima,
-    records, times)."""
+    records); records ``cap_rec`` capsized at ``cap_t``: the run of exceedances that ends at the
+    capsize (each closer than tau to the next, the last closer than tau to the capsize) is the
+    capsize's cluster, which is not among the returned maxima. Returns (maxima, records, times)."""
     rec, t, v = np.asarray(rec), np.asarray(t, float), np.asarray(v, float)
-    if len(cap_rec):
-        ct = dict(zip(np.asarray(cap_rec).tolist(), np.asarray(cap_t, float).tolist()))
-        lim = np.array([ct.get(r, np.inf) for r in rec.tolist()]) - tau
-        keep = t < lim
-        rec, t, v = rec[keep], t[keep], v[keep]
-    return decluster(rec, t, v, u, tau)
+    keep = np.ones(len(v), bool)
+    for r, tc in zip(np.asarray(cap_rec).tolist(), np.asarray(cap_t, float).tolist()):
+        # walk back from the capsize along the run of exceedances closer than tau to each other
+        idx = np.nonzero((rec == r) & (v > u) & (t <= tc))[0]
+        idx = idx[np.argsort(t[idx])][::-1]
+        edge = tc
+        for i in idx:
+            if edge - t[i] > tau:
+                break
+            keep[i] = False
+            edge = t[i]
+    return decluster(rec[keep], t[keep], v[keep], u, tau)
 
 
 #: fewest exceedances for a GPD fit

@@ -182,11 +182,13 @@ def crossing_metric(rate: np.ndarray, delta: np.ndarray, dmax: float) -> tuple[n
     even zero roll rate at the crossing capsizes (y = inf: at least 1)."""
     rate = np.abs(np.asarray(rate, float))
     delta = np.asarray(delta, float)
+    if np.isnan(delta).any() or np.isnan(rate).any():
+        raise ValueError("crossing_metric: a crossing without a critical perturbation (NaN)")
     y = np.full(len(rate), np.inf)
     kind = np.zeros(len(rate), np.int8)
     fin = np.isfinite(delta) & (rate + delta > 0)
     y[fin] = rate[fin] / (rate[fin] + delta[fin])
-    cens = ~np.isfinite(delta)
+    cens = np.isposinf(delta)
     y[cens] = rate[cens] / (rate[cens] + dmax)
     kind[cens] = -1
     kind[np.isfinite(delta) & ~fin] = 1
@@ -217,8 +219,9 @@ def metric_rate(y, kind, hours: float, quantile: float, alpha: float, fixed_shap
                sigma=np.nan, u=np.nan, n_u=0)
     if len(y) == 0:
         return out
-    u = float(np.quantile(np.where(np.isinf(y), np.finfo(float).max, y), quantile))
-    u = min(u, 1.0 - 1e-9) if np.all(y[kind == 0] >= 1.0) and np.any(kind == 0) else u
+    # the GPD threshold: the metric's quantile, kept below 1 (the model must reach y = 1; above a
+    # threshold at 1 the rate is the counted share of clusters at or beyond 1)
+    u = min(float(np.quantile(np.where(np.isinf(y), np.finfo(float).max, y), quantile)), 1.0 - 1e-9)
     data = TailData(y[kind == 0], hours, left=y[kind == -1], right=np.full(int(np.sum(kind == 1)), max(1.0, u)))
     try:
         full = profile_interval(data, u, 1.0, alpha)

@@ -220,7 +220,8 @@ def profile_interval(data: TailData, u: float, x: float, alpha: float = 0.05, xi
     theta / (zeta S(x - u)). Where the estimate is 0 (a bounded GPD ending below x) the lower bound
     is 0 and the upper bound is where the deviance of theta > 0 reaches the chi-square quantile; it
     is 0 too when even the smallest positive rate (the best fit whose end point reaches x) lies
-    outside: the sample then rules out any rate at this level.
+    outside: the sample then rules out any rate at this level. With the shape fixed at a bounded
+    estimate ending below x the interval is [0, 0] (no fixed-shape fit reaches x).
     """
     L = _Likelihood(data, u)
     f0 = fitted if fitted is not None else fit(data, u, xi)
@@ -293,8 +294,9 @@ def profile_interval(data: TailData, u: float, x: float, alpha: float = 0.05, xi
         lt = np.log(theta_hat)
         lo = bound(lt, -0.25)
         hi = bound(lt, +0.25)
-        return RateInterval(theta_hat, float(np.exp(lo)) if lo is not None else theta_hat,
-                            float(np.exp(hi)) if hi is not None else theta_hat, f0, 1 - alpha)
+        # None: the optimiser did not reproduce the maximum at the estimate; the bound is unknown (NaN)
+        return RateInterval(theta_hat, float(np.exp(lo)) if lo is not None else np.nan,
+                            float(np.exp(hi)) if hi is not None else np.nan, f0, 1 - alpha)
     # theta_hat = 0: the profile at theta -> 0+ is the best bounded-beyond-x fit; walk upwards from a
     # small theta (the rate of one cluster in 10^6 exposures)
     lt0 = np.log(L.N / L.T * 1e-6) if L.N else np.log(1e-6 / L.T)

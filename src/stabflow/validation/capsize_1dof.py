@@ -354,8 +354,12 @@ def _dataset(cfg, per_case, samples, ks, sigmas) -> xr.Dataset:
         hi_f = ds[f"{method}_rate_upper_fixed_shape"].values
         ds[f"{method}_extrapolation_share"] = (("case", "sample"), shape_share(est[..., 1], est[..., 2], lo_f, hi_f))
     # consistency across thresholds: every threshold's estimate inside the reported threshold's interval
-    ext_ok = np.all((ext[..., 0] >= ext[:, :, rep_k:rep_k + 1, 1]) & (ext[..., 0] <= ext[:, :, rep_k:rep_k + 1, 2]), axis=2)
-    st_ok = np.all((st[..., 0] >= st_rep[:, :, None, 1]) & (st[..., 0] <= st_rep[:, :, None, 2]), axis=2)
+    # (thresholds without an estimate are left out, as in the extremes step; the reported one must have one)
+    with np.errstate(invalid="ignore"):
+        ext_in = (ext[..., 0] >= ext[:, :, rep_k:rep_k + 1, 1]) & (ext[..., 0] <= ext[:, :, rep_k:rep_k + 1, 2])
+        st_in = (st[..., 0] >= st_rep[:, :, None, 1]) & (st[..., 0] <= st_rep[:, :, None, 2])
+    ext_ok = np.all(ext_in | np.isnan(ext[..., 0]), axis=2) & np.isfinite(ext[:, :, rep_k, 0])
+    st_ok = np.all(st_in | np.isnan(st[..., 0]), axis=2) & np.isfinite(st_rep[..., 0])
     ds["extremes_threshold_consistency"] = ("case", ext_ok.mean(axis=1))
     ds["splittime_threshold_consistency"] = ("case", st_ok.mean(axis=1))
     ds.attrs.update(
