@@ -27,7 +27,7 @@ def test_excitation_has_the_filters_stationary_law():
     m = _model(duration=1e5 * 12.566 / 20)
     e = m.excitation(7)[:, 0]
     assert np.std(e) == pytest.approx(m.sigma, rel=0.05)
-    Phi, _, cs = m.filter_matrices()
+    Phi, _, cs = m.filter_matrices
     S = cs @ cs.T
     for k in (1, 5, 20):
         exact = (np.linalg.matrix_power(Phi, k) @ S)[0, 0] / S[0, 0]

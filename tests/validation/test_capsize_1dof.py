@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from stabflow.config import load_pipeline
+from stabflow.constants import G
 from stabflow.validation.capsize_1dof import analyse, box_model, capsize_1dof_checks, cases, reported_threshold
 
 from ..conftest import ROOT
@@ -25,7 +26,7 @@ def test_box_model_particulars(cfg):
     name, band, sigma, _ = cases(cfg)[0]
     m = box_model(cfg, band, sigma)
     gm = 3.0 + 400.0 / 72.0 - 6.5
-    assert m.w0 == pytest.approx(np.sqrt(9.81 * gm) / 8.0)
+    assert m.w0 == pytest.approx(np.sqrt(G * gm) / 8.0)
     avs = brentq(lambda a: exact_box_gz(100, 20, 8, 12000, 6.5, [a])[0], 30.0, 40.0, xtol=1e-6)
     assert np.degrees(m.cap) == pytest.approx(avs, abs=0.01)
     assert m.restoring[10] / (10 * m.dphi) == pytest.approx(1.0, rel=1e-3)

@@ -23,6 +23,7 @@ machine and validates the split-time and extreme-value estimates far beyond any 
 
 from __future__ import annotations
 
+import functools
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -81,6 +82,7 @@ class OneDof:
         """Excitation samples of a record (spacing dt)."""
         return self.nsteps + 1
 
+    @functools.cached_property
     def filter_matrices(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(Phi, chol(Q), chol(Sigma)) of the excitation filter at spacing dt."""
         A = np.array([[0.0, 1.0], [-self.wf**2, -2.0 * self.zf * self.wf]])
@@ -99,7 +101,7 @@ class OneDof:
 
     def excitation(self, seed: int) -> np.ndarray:
         """Excitation samples (e [rad], e' [rad/s]) of one record, shape (nexc, 2)."""
-        Phi, cq, cs = self.filter_matrices()
+        Phi, cq, cs = self.filter_matrices
         out = np.empty((self.nexc, 2))
         _r1_excitation(np.random.default_rng(int(seed)), self.nexc, Phi, cq, cs, out)
         return out
@@ -117,7 +119,7 @@ class OneDof:
         kernel releases the GIL), each with its own Generator: the result does not depend on threads."""
         from tqdm import tqdm
 
-        Phi, cq, cs = self.filter_matrices()
+        Phi, cq, cs = self.filter_matrices
         seeds = np.asarray(seeds)
         last = np.empty(len(seeds), np.int64)
         chunks = np.array_split(np.arange(len(seeds)), max(1, len(seeds) // 16))

@@ -33,7 +33,7 @@ import xarray as xr
 
 from stabflow.statistics.signals import decorrelation_time
 from stabflow.io import annotate
-from stabflow.statistics.tail import shape_share
+from stabflow.statistics.tail import consistent_with, shape_share
 
 EPOCH = pd.Timestamp("2000-01-01")
 
@@ -100,7 +100,7 @@ def block_estimates(data_rec, data_t, data_v, cap_rec, cap_t, recs, hours, u_lis
     lowers, uppers, shapes, exceedances) each of shape (thresholds, targets), and the fixed-shape
     (lower, upper) at threshold ``report``. NaN where a target lies below the threshold or fewer
     than MIN_EXCEEDANCES exceed it."""
-    from stabflow.statistics.tail import TailData, profile_interval
+    from stabflow.statistics.tail import TailData, fit, rate_estimate
 
     inb = np.isin(data_rec, recs)
     cb = np.isin(cap_rec, recs)
@@ -114,14 +114,13 @@ def block_estimates(data_rec, data_t, data_v, cap_rec, cap_t, recs, hours, u_lis
         NU[i] = len(mx) + int(cb.sum())
         if NU[i] < MIN_EXCEEDANCES:
             continue
+        f0 = fit(data, u)  # one fit per threshold, shared by the targets
         for j, x in enumerate(targets):
             if x < u:  # the tail model says nothing below its threshold: NaN, not the rate of u
                 continue
-            r = profile_interval(data, u, x, alpha)
-            R[i, j], LO[i, j], HI[i, j], XI[i, j] = r.rate, r.lower, r.upper, r.fit.xi
-            if i == report:
-                f = profile_interval(data, u, x, alpha, xi=r.fit.xi, fitted=None)
-                fixed[:, j] = f.lower, f.upper
+            r = rate_estimate(data, u, x, alpha, fixed_shape=i == report, fitted=f0)
+            R[i, j], LO[i, j], HI[i, j], XI[i, j] = r["rate"], r["lower"], r["upper"], r["xi"]
+            fixed[:, j] = (r["lower_fixed"], r["upper_fixed"]) if i == report else fixed[:, j]
     return R, LO, HI, XI, NU, fixed
 
 
@@ -198,9 +197,7 @@ def analyse(ens: xr.Dataset, cfg: dict, progress: bool = False) -> tuple[xr.Data
     # consistency: the other thresholds' estimates inside the reported threshold's interval
     ra = R["rate_all"]
     # (thresholds above a target have no estimate there and are left out)
-    with np.errstate(invalid="ignore"):
-        inside_all = (ra >= R["lo"][:, None, :]) & (ra <= R["hi"][:, None, :])
-    consistent = np.all(inside_all | np.isnan(ra), axis=1) & np.isfinite(R["rate"])
+    consistent = consistent_with(ra, R["lo"][:, None, :], R["hi"][:, None, :], axis=1) & np.isfinite(R["rate"])
     share = shape_share(R["lo"], R["hi"], R["fixed_lo"], R["fixed_hi"])
     ds = xr.Dataset(
         {

@@ -212,26 +212,16 @@ def metric_rate(y, kind, hours: float, quantile: float, alpha: float, fixed_shap
     GPD shape fixed (unless ``fixed_shape`` is False: NaN). Returns dict(rate, lower, upper,
     lower_fixed, upper_fixed, xi, sigma, u, n_u);
     NaN entries when fewer than 3 metrics exceed u."""
-    from stabflow.statistics.tail import TailData, profile_interval
+    from stabflow.statistics.tail import TailData, rate_estimate
 
     y, kind = np.asarray(y, float), np.asarray(kind)
-    out = dict(rate=np.nan, lower=np.nan, upper=np.nan, lower_fixed=np.nan, upper_fixed=np.nan, xi=np.nan,
-               sigma=np.nan, u=np.nan, n_u=0)
     if len(y) == 0:
-        return out
+        return rate_estimate(TailData([], hours), np.nan, 1.0, alpha, fixed_shape)
     # the GPD threshold: the metric's quantile, kept below 1 (the model must reach y = 1; above a
     # threshold at 1 the rate is the counted share of clusters at or beyond 1)
     u = min(float(np.quantile(np.where(np.isinf(y), np.finfo(float).max, y), quantile)), 1.0 - 1e-9)
     data = TailData(y[kind == 0], hours, left=y[kind == -1], right=np.full(int(np.sum(kind == 1)), max(1.0, u)))
-    try:
-        full = profile_interval(data, u, 1.0, alpha)
-        fixed = profile_interval(data, u, 1.0, alpha, xi=full.fit.xi) if fixed_shape else None
-    except ValueError:
-        out["u"] = u
-        return out
-    return dict(rate=full.rate, lower=full.lower, upper=full.upper, lower_fixed=fixed.lower if fixed else np.nan,
-                upper_fixed=fixed.upper if fixed else np.nan,
-                xi=full.fit.xi, sigma=full.fit.sigma, u=u, n_u=full.fit.n_exceed)
+    return rate_estimate(data, u, 1.0, alpha, fixed_shape)
 
 
 def critical_perturbations(model: Model, records, steps, sides, levels, follow: int, dmax_deg: float,

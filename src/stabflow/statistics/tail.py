@@ -304,6 +304,35 @@ def profile_interval(data: TailData, u: float, x: float, alpha: float = 0.05, xi
     return RateInterval(0.0, 0.0, float(np.exp(hi)) if hi is not None else 0.0, f0, 1 - alpha)
 
 
+def rate_estimate(data: TailData, u: float, x: float, alpha: float = 0.05, fixed_shape: bool = True,
+                  fitted: TailFit | None = None) -> dict:
+    """theta(x) [1/h] with its profile-likelihood interval and, unless ``fixed_shape`` is False, the
+    interval with the shape fixed at its estimate (the same fit: the shape's estimate is the
+    maximum). Returns dict(rate, lower, upper, lower_fixed, upper_fixed, xi, sigma, u, n_u); NaN
+    entries (n_u 0) when fewer than 3 maxima exceed u."""
+    out = dict(rate=np.nan, lower=np.nan, upper=np.nan, lower_fixed=np.nan, upper_fixed=np.nan, xi=np.nan,
+               sigma=np.nan, u=float(u), n_u=0)
+    try:
+        full = profile_interval(data, u, x, alpha, fitted=fitted)
+    except ValueError:
+        return out
+    out.update(rate=full.rate, lower=full.lower, upper=full.upper, xi=full.fit.xi, sigma=full.fit.sigma,
+               n_u=full.fit.n_exceed)
+    if fixed_shape:
+        fx = profile_interval(data, u, x, alpha, xi=full.fit.xi, fitted=full.fit)
+        out.update(lower_fixed=fx.lower, upper_fixed=fx.upper)
+    return out
+
+
+def consistent_with(rates, lower, upper, axis: int) -> np.ndarray:
+    """True where every finite one of ``rates`` along ``axis`` lies in [lower, upper] (the reported
+    threshold's interval, broadcast along ``axis``); thresholds without an estimate are left out."""
+    rates = np.asarray(rates, float)
+    with np.errstate(invalid="ignore"):
+        inside = (rates >= lower) & (rates <= upper)
+    return np.all(inside | np.isnan(rates), axis=axis)
+
+
 def shape_share(lower, upper, lower_fixed, upper_fixed) -> np.ndarray:
     """Share of an interval's log-width due to the GPD shape (the extrapolation):
     1 - log(upper_fixed / lower_fixed) / log(upper / lower), clipped to [0, 1]; NaN where a width is

@@ -35,12 +35,13 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from stabflow.constants import G
 from stabflow.dynamics.one_dof import OneDof, critical_perturbation, record_seeds, restoring_table
 from stabflow.io import annotate
 from stabflow.statistics.extremes import record_maxima
 from stabflow.statistics.signals import crossings, decorrelation_time, local_peaks
 from stabflow.statistics.splittime import crossing_metric, decluster_metric, metric_rate, poisson_interval
-from stabflow.statistics.tail import TailData, profile_interval, shape_share
+from stabflow.statistics.tail import TailData, consistent_with, rate_estimate, shape_share
 
 #: seed streams: brute force and samples never share a record seed
 BRUTE_STREAM, SAMPLE_STREAM = 0, 1
@@ -66,7 +67,7 @@ def box_model(cfg: dict, band: dict, sigma: float) -> OneDof:
     # angle of vanishing stability by linear interpolation of the table
     i = neg[0]
     avs = dphi * (i + tab[i] / (tab[i] - tab[i + 1]))
-    w0 = np.sqrt(9.81 * gm) / float(cfg["gyradius"])
+    w0 = np.sqrt(G * gm) / float(cfg["gyradius"])
     T0 = 2 * np.pi / w0
     return OneDof(w0=w0, zeta=float(cfg["damping_ratio"]), restoring=tab, dphi=dphi, cap=avs, wf=w0 * float(band["filter_frequency_ratio"]),
                   zf=float(band["filter_damping"]), sigma=float(sigma), dt=T0 / float(cfg["steps_per_period"]),
@@ -192,17 +193,8 @@ def extremes_estimate(ev: SampleEvents, x_deg: float, k: int, alpha: float, fixe
     allv = np.concatenate([ev.maxima, np.full(ev.capsizes, x_deg)])
     u = threshold_with(allv, k)
     data = TailData(ev.maxima, ev.hours, right=np.full(ev.capsizes, x_deg))
-    return _tail(data, u, x_deg, alpha, fixed_shape)
-
-
-def _tail(data: TailData, u: float, x: float, alpha: float, fixed_shape: bool = True):
-    try:
-        full = profile_interval(data, u, x, alpha)
-        fixed = profile_interval(data, u, x, alpha, xi=full.fit.xi) if fixed_shape else None
-    except ValueError:
-        return (np.nan,) * 7
-    return (full.rate, full.lower, full.upper, fixed.lower if fixed else np.nan, fixed.upper if fixed else np.nan,
-            full.fit.xi, u)
+    r = rate_estimate(data, u, x_deg, alpha, fixed_shape)
+    return r["rate"], r["lower"], r["upper"], r["lower_fixed"], r["upper_fixed"], r["xi"], u
 
 
 def reported_threshold(clusters: dict, sigmas, min_clusters: int) -> float:
@@ -355,11 +347,9 @@ def _dataset(cfg, per_case, samples, ks, sigmas) -> xr.Dataset:
         ds[f"{method}_extrapolation_share"] = (("case", "sample"), shape_share(est[..., 1], est[..., 2], lo_f, hi_f))
     # consistency across thresholds: every threshold's estimate inside the reported threshold's interval
     # (thresholds without an estimate are left out, as in the extremes step; the reported one must have one)
-    with np.errstate(invalid="ignore"):
-        ext_in = (ext[..., 0] >= ext[:, :, rep_k:rep_k + 1, 1]) & (ext[..., 0] <= ext[:, :, rep_k:rep_k + 1, 2])
-        st_in = (st[..., 0] >= st_rep[:, :, None, 1]) & (st[..., 0] <= st_rep[:, :, None, 2])
-    ext_ok = np.all(ext_in | np.isnan(ext[..., 0]), axis=2) & np.isfinite(ext[:, :, rep_k, 0])
-    st_ok = np.all(st_in | np.isnan(st[..., 0]), axis=2) & np.isfinite(st_rep[..., 0])
+    ext_ok = (consistent_with(ext[..., 0], ext[:, :, rep_k:rep_k + 1, 1], ext[:, :, rep_k:rep_k + 1, 2], axis=2)
+              & np.isfinite(ext[:, :, rep_k, 0]))
+    st_ok = consistent_with(st[..., 0], st_rep[:, :, None, 1], st_rep[:, :, None, 2], axis=2) & np.isfinite(st_rep[..., 0])
     ds["extremes_threshold_consistency"] = ("case", ext_ok.mean(axis=1))
     ds["splittime_threshold_consistency"] = ("case", st_ok.mean(axis=1))
     ds.attrs.update(
