@@ -340,6 +340,13 @@ def _accelerations(p, s, f, acc, mq, r):
     (6,) are scratch). A held coordinate (``p[P_FREE + j] == 0``) gets the row q_j'' = 0; the
     6x6 system is solved by Gaussian elimination with partial pivoting (no allocation)."""
     _generalized_system(p, s, f, mq, r)
+    _solve_free(p, mq, r, acc)
+
+
+@njit(cache=True)
+def _solve_free(p, mq, r, acc):
+    """Solve ``mq`` q'' = ``r`` for the free coordinates into ``acc`` (held ones: q_j'' = 0);
+    ``mq`` and ``r`` are overwritten."""
     for j in range(6):
         if p[P_FREE + j] == 0.0:
             for k in range(6):

@@ -65,6 +65,24 @@ def radiation(body, omega, rho, solver=None):
     return A, B
 
 
+def manoeuvring_added_mass(mesh, h0, th0, xg, zg, rho) -> np.ndarray:
+    """Added mass (3, 3) of surge, sway and yaw about G [kg, kg m, kg m^2] at zero frequency (the
+    manoeuvring limit, free surface as a rigid wall for w -> 0) for the hull at its upright
+    equilibrium (heave h0 [m], trim th0 [rad]), symmetrised."""
+    import capytaine as cpt
+
+    cpt.set_logging("ERROR")
+    ve = earth_vertices(np.asarray(mesh.vertices, float), 0.0, th0, h0)
+    ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
+    dofs = ["Surge", "Sway", "Yaw"]
+    body = cpt.FloatingBody(mesh=cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)),
+                            dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge))).immersed_part().with_only_dofs(dofs)
+    solver = cpt.BEMSolver()
+    res = [solver.solve(cpt.RadiationProblem(body=body, radiating_dof=d, omega=0.0, rho=rho, g=G)) for d in dofs]
+    A = np.array([[r.added_mass[d] for r in res] for d in dofs])
+    return 0.5 * (A + A.T)
+
+
 def excitation(body, omega, heading_deg, rho, solver=None) -> np.ndarray:
     """Complex Froude-Krylov + diffraction force (heave, roll, pitch) per unit wave amplitude."""
     import capytaine as cpt

@@ -24,6 +24,27 @@ from stabflow.waves._kernels import _trig_table
 from stabflow.constants import G
 
 
+def _time_series_table(we, times, cols, dtype) -> np.ndarray:
+    """sum_n [C_pn cos(we_n t) + D_pn sin(we_n t)] for every column p of ``cols`` (a list of (C, D)
+    pairs, each (npoints, nc)): one matrix product of the time factors (nt, 2 nc) with the
+    coefficients (2 nc, npoints nq) → (nt, npoints, nq) in ``dtype``."""
+    times = np.asarray(times, float)
+    t0 = times[0] if len(times) else 0.0
+    dt = times[1] - times[0] if len(times) > 1 else 0.0
+    if len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
+        raise ValueError("times must be equally spaced")
+    nq = len(cols)
+    npt, nc = cols[0][0].shape
+    coef = np.empty((2 * nc, npt, nq))
+    for q, (c, d) in enumerate(cols):
+        coef[:nc, :, q] = c.T
+        coef[nc:, :, q] = d.T
+    trig = np.empty((len(times), 2 * nc), dtype=dtype)
+    _trig_table(we, t0, dt, trig)
+    out = trig @ coef.reshape(2 * nc, npt * nq).astype(dtype)
+    return out.reshape(len(times), npt, nq)
+
+
 def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None,
                        dtype=np.float64) -> np.ndarray:
     """(nt, nst, nq) table of (eta, S[, dphi_zt]) at stations ``xs`` and equally spaced ``times``.
@@ -38,15 +59,9 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
     omega = np.asarray(omega, float)
     phase = np.asarray(phase, float)
     xs = np.asarray(xs, float)
-    times = np.asarray(times, float)
     k = omega**2 / G
-    beta = np.radians(heading_deg)
-    cb = np.cos(beta)
+    cb = np.cos(np.radians(heading_deg))
     we = omega - k * speed * cb
-    t0 = times[0] if len(times) else 0.0
-    dt = times[1] - times[0] if len(times) > 1 else 0.0
-    if len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
-        raise ValueError("times must be equally spaced")
     # psi = P - we t with P = k cos(beta) x + e: cos psi = cos P cos(we t) + sin P sin(we t)
     P = (k * cb)[None, :] * xs[:, None] + phase[None, :]
     cP, sP = np.cos(P), np.sin(P)
@@ -56,15 +71,31 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
         kt = k[None, :] * np.maximum(np.asarray(depth, float)[:, None], 1e-9)
         smith = np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0)
         cols.append((-G * ak * smith * cP, -G * ak * smith * sP))
-    nq, nst, nc = len(cols), len(xs), len(amp)
-    coef = np.empty((2 * nc, nst, nq))
-    for q, (c, d) in enumerate(cols):
-        coef[:nc, :, q] = c.T
-        coef[nc:, :, q] = d.T
-    trig = np.empty((len(times), 2 * nc), dtype=dtype)
-    _trig_table(we, t0, dt, trig)
-    out = trig @ coef.reshape(2 * nc, nst * nq).astype(dtype)
-    return out.reshape(len(times), nst, nq)
+    return _time_series_table(we, times, cols, dtype)
+
+
+def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.float64) -> np.ndarray:
+    """(nt, npoints, 4) table of (eta, S, dS/dxi, d2S/dxi2) at the points ``xi`` [m] of the
+    propagation coordinate xi = X cos(beta) + Y sin(beta) of the frame moving with ``speed`` [m/s]
+    along x, at equally spaced ``times``.
+
+    Long-crested waves depend on (X, Y) only through xi, so this one line of points serves stations
+    anywhere in the horizontal plane (6-DOF: the stations move with surge, sway and yaw); the kernel
+    interpolates eta with its slope S and S with dS/dxi by cubic Hermite polynomials. A station at
+    X = x_i on the ship's axis (Y = 0) has xi = x_i cos(beta): the values equal
+    :func:`station_wave_table`'s there (dS/dxi = -sum a k^2 cos psi, d2S/dxi2 = sum a k^3 sin psi).
+    """
+    amp = np.asarray(amp, dtype=float)
+    omega = np.asarray(omega, float)
+    phase = np.asarray(phase, float)
+    xi = np.asarray(xi, float)
+    k = omega**2 / G
+    we = omega - k * speed * np.cos(np.radians(heading_deg))
+    P = k[None, :] * xi[:, None] + phase[None, :]
+    cP, sP = np.cos(P), np.sin(P)
+    ak, ak2, ak3 = amp * k, amp * k**2, amp * k**3
+    cols = [(amp * cP, amp * sP), (-ak * sP, ak * cP), (-ak2 * cP, -ak2 * sP), (ak3 * sP, -ak3 * cP)]
+    return _time_series_table(we, times, cols, dtype)
 
 
 def regular(height: float, wavelength: float):

@@ -1,0 +1,321 @@
+"""Numba kernels (private): 6-DOF manoeuvring in waves (issue 17, paper 004).
+
+The rigid-body equations about G and the FK + HS loads are those of :mod:`._kernels`; this module
+adds what a free course needs:
+
+* the incident wave at the stations' *instantaneous* positions: long-crested waves depend on the
+  horizontal position only through xi = X cos(beta) + Y sin(beta), so one table on a line of xi
+  points (``waves.synthesis.line_wave_table``: eta, S, dS/dxi, d2S/dxi2 on the half-step grid) is
+  interpolated at each station by cubic Hermite polynomials (eta with its slope S, S with dS/dxi);
+  the wave heading relative to the ship is beta - psi;
+* calm-water resistance and a constant thrust, linear hull manoeuvring forces, foils (rudder,
+  skeg) as lifting surfaces (paper 004 eqs 1-11), the horizontal added mass in body axes (with its
+  Munk moment), and the PD autopilot with the first-order rudder servo (paper 004 eqs 30-34).
+
+Parameters: ``p`` as in :mod:`._kernels` (its cos/sin beta are the wave heading relative to the
+mean course), ``m`` (``M_*`` positions below), ``foils`` (nf, F_N) rows and the cross-flow drag
+``strips`` (nst, 2).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from stabflow.dynamics._kernels import (N_STATE, P_COS_BETA, P_G, P_RHO, P_SIN_BETA, P_XG, P_ZG, S_PITCH,
+                                        S_RATE, S_ROLL, S_X, S_Y, S_YAW, S_Z, _fkhs, _generalized_system,
+                                        _origin_height, _solve_free, _update_amplitude)
+
+# manoeuvring parameter vector ``m``
+M_SPEED = 0        # commanded speed U [m/s]: the frame of q moves with U along the mean course
+M_XI0 = 1          # first point of the wave line table [m]
+M_DXI = 2          # spacing of the wave line table [m]
+M_YV = 3           # hull sway force per (u v) [kg/m]: Y = u (Yv v + Yr r)
+M_YR = 4           # [kg]
+M_NV = 5           # hull yaw moment about midships per (u v) [kg]: N = u (Nv v + Nr r)
+M_NR = 6           # [kg m]
+M_ZH = 7           # height of the hull side force above G [m] (negative: below G)
+M_RES = 8          # 1/2 rho S_w (1 + k) [kg/m]: resistance = M_RES C_F(Re) u |u|
+M_LNU = 9          # L / nu [s/m]: Re = |u| L / nu
+M_THRUST = 10      # constant thrust [N] (the calm-water resistance at U)
+M_GA = 11          # autopilot proportional gain [-] (paper 004 eq 30)
+M_GB = 12          # autopilot derivative gain [s]
+M_TAU = 13         # servo time constant P_B / R_m [s] (eq 31)
+M_SLEW = 14        # slew rate R_m [rad/s] (eq 33)
+M_MAX = 15         # maximum rudder angle A_m [rad] (eq 34)
+M_PSID = 16        # desired heading [rad]
+M_AUTOPILOT = 17   # 1: autopilot; 0: rudder held at its initial angle
+M_AB = 18          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
+N_M = M_AB + 9
+
+# foil rows: position from G (x forward, z up) [m], area S C [m^2], lift slope [1/rad], stall and
+# trailing-edge stall angles [rad] (paper 004 eq 9), 1 for the rudder (turns with delta), effective
+# aspect ratio 2 S / C (eq 6)
+F_X = 0
+F_Z = 1
+F_AREA = 2
+F_CLA = 3
+F_STALL = 4
+F_TRAIL = 5
+F_RUDDER = 6
+F_AR = 7
+F_N = 8
+
+# state: the 3-DOF state then the rudder angle delta [rad] (positive: trailing edge to starboard,
+# turning the ship to starboard, psi decreasing), held within a step like the roll amplitude
+S_RUDDER = N_STATE
+N_STATE6 = N_STATE + 1
+
+# record status
+OK = 0
+CAPSIZED = 1
+LEFT_TABLE = 2
+
+
+@njit(cache=True, inline="always")
+def _hermite(y0, d0, y1, d1, t, h):
+    """Cubic Hermite interpolation on [0, 1] with derivatives d0, d1 per unit length and spacing h."""
+    t2 = t * t
+    t3 = t2 * t
+    return ((2.0 * t3 - 3.0 * t2 + 1.0) * y0 + (t3 - 2.0 * t2 + t) * h * d0
+            + (-2.0 * t3 + 3.0 * t2) * y1 + (t3 - t2) * h * d1)
+
+
+@njit(cache=True)
+def _station_wave(xs, p, m, s, line, wave):
+    """Fill ``wave`` (nst, 2) with (eta, S) at the stations' instantaneous positions from the line
+    table ``line`` (npoints, 4) at one time. Returns False if a station lies outside the table (its
+    value is then taken at the nearest end)."""
+    xg = p[P_XG]
+    cb = p[P_COS_BETA]
+    sb = p[P_SIN_BETA]
+    # stations on the ship's axis turned by the yaw about G; like the 3-DOF model (paper 000
+    # section 3) the horizontal shift of a section by pitch (second order) is left out
+    cy = math.cos(s[S_YAW])
+    sy = math.sin(s[S_YAW])
+    x0 = s[S_X] + xg
+    y0 = s[S_Y]
+    xi0 = m[M_XI0]
+    h = m[M_DXI]
+    npt = line.shape[0]
+    inside = True
+    for i in range(xs.shape[0]):
+        d = xs[i] - xg
+        xi = (x0 + cy * d) * cb + (y0 + sy * d) * sb
+        u = (xi - xi0) / h
+        k = int(math.floor(u))
+        if k < 0:
+            k = 0
+            u = 0.0
+            inside = False
+        elif k > npt - 2:
+            k = npt - 2
+            u = npt - 1.0
+            inside = False
+        t = u - k
+        wave[i, 0] = _hermite(line[k, 0], line[k, 1], line[k + 1, 0], line[k + 1, 1], t, h)
+        wave[i, 1] = _hermite(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
+    return inside
+
+
+@njit(cache=True, inline="always")
+def _foil_lift(uf, vf, delta, rho, area, cla, stall, trail, ar):
+    """Horizontal force (Fx, Fy) [N] of a vertical foil moving at (uf, vf) [m/s] through still water,
+    chord turned by ``delta`` (nose to port for delta > 0): paper 004 eqs 5, 9, 11 with the flow
+    in the horizontal plane (span vertical). The angle of attack is measured from the upstream
+    direction to the chord; lift is normal to the flow, C_L = C_La alpha below the stall angle,
+    C_La (alpha -+ pi) within the trailing-edge stall angle of reversed flow, else zero. The
+    induced drag of the same lifting line, C_Di = C_L^2 / (pi A_R) (Prandtl), acts along the flow:
+    without it a lifting rudder in a turn would propel the ship."""
+    v2 = uf * uf + vf * vf
+    if v2 <= 1e-12:
+        return 0.0, 0.0
+    vv = math.sqrt(v2)
+    dx = uf / vv
+    dy = vf / vv
+    cx = math.cos(delta)
+    cy = math.sin(delta)
+    alpha = math.atan2(dx * cy - dy * cx, dx * cx + dy * cy)
+    if abs(alpha) < stall:
+        cl = cla * alpha
+    elif math.pi - abs(alpha) < trail:
+        cl = cla * (alpha - math.copysign(math.pi, alpha))
+    else:
+        cl = 0.0
+    q = 0.5 * rho * v2 * area
+    cd = cl * cl / (math.pi * ar)
+    # lift along (-dy, dx), drag against the foil's motion (-dx, -dy)
+    return q * (-dy * cl - dx * cd), q * (dx * cl - dy * cd)
+
+
+@njit(cache=True)
+def _manoeuvring_loads(p, m, foils, strips, s, delta, f):
+    """Add resistance, thrust, hull manoeuvring forces (linear derivatives and cross-flow drag of
+    the ``strips`` (nst, 2): x from G [m] and 1/2 rho T C_D dx [kg/m]) and foil forces to the loads
+    ``f`` (6,) (force and moment about G in the heading frame)."""
+    rho = p[P_RHO]
+    psi = s[S_YAW]
+    c = math.cos(psi)
+    sn = math.sin(psi)
+    xd = m[M_SPEED] + s[S_RATE + S_X]
+    yd = s[S_RATE + S_Y]
+    u = c * xd + sn * yd
+    v = -sn * xd + c * yd
+    r = s[S_RATE + S_YAW]
+    pr = s[S_RATE + S_ROLL]
+    # resistance on the ITTC-57 line with the form factor, and the constant thrust
+    re = abs(u) * m[M_LNU]
+    cf = 0.075 / (math.log10(max(re, 1e3)) - 2.0) ** 2  # ITTC 1957 model-ship correlation line
+    fx = m[M_THRUST] - m[M_RES] * cf * u * abs(u)
+    # linear hull manoeuvring forces (about midships, x = 0) scaled by the surge velocity
+    fy = u * (m[M_YV] * v + m[M_YR] * r)
+    nz = u * (m[M_NV] * v + m[M_NR] * r) - p[P_XG] * fy
+    # cross-flow drag: each strip's lateral velocity v + r x meets the drag of a 2-D section
+    for i in range(strips.shape[0]):
+        vl = v + r * strips[i, 0]
+        dy = -strips[i, 1] * vl * abs(vl)
+        fy += dy
+        nz += strips[i, 0] * dy
+    kx = -m[M_ZH] * fy
+    for j in range(foils.shape[0]):
+        xf = foils[j, F_X]
+        zf = foils[j, F_Z]
+        dl = delta if foils[j, F_RUDDER] != 0.0 else 0.0
+        # velocity of the foil centre: (u, v + r x_f - p z_f)
+        lx, ly = _foil_lift(u, v + r * xf - pr * zf, dl, rho, foils[j, F_AREA], foils[j, F_CLA],
+                            foils[j, F_STALL], foils[j, F_TRAIL], foils[j, F_AR])
+        fx += lx
+        fy += ly
+        nz += xf * ly
+        kx -= zf * ly
+    f[0] += fx
+    f[1] += fy
+    f[3] += kx
+    f[5] += nz
+
+
+@njit(cache=True)
+def _horizontal_added_mass(m, s, mq, r):
+    """Add the inertia of the body-axis added mass of (u, v, r), -A_b nu', to the generalized
+    system of (x, y, psi): with u = cos psi (U + x') + sin psi y', v = -sin psi (U + x') + cos psi y',
+    r = psi', nu' = J q'' + r (v, -u, 0) (J the rotation to the heading frame), so
+    J^T A_b J q'' = Q - J^T A_b r (v, -u, 0). The velocity-dependent ideal-fluid forces (added-mass
+    Coriolis terms, Munk moment) are part of the hull derivatives (measured on rotating arms and
+    planar-motion mechanisms, Clarke et al. 1983) and are not added again."""
+    psi = s[S_YAW]
+    c = math.cos(psi)
+    sn = math.sin(psi)
+    xd = m[M_SPEED] + s[S_RATE + S_X]
+    yd = s[S_RATE + S_Y]
+    u = c * xd + sn * yd
+    v = -sn * xd + c * yd
+    rr = s[S_RATE + S_YAW]
+    A = m[M_AB:M_AB + 9]
+    # J rows: u <- (c, s, 0), v <- (-s, c, 0), r <- (0, 0, 1) over (x, y, psi)
+    J = ((c, sn, 0.0), (-sn, c, 0.0), (0.0, 0.0, 1.0))
+    idx = (S_X, S_Y, S_YAW)
+    for a in range(3):
+        for b in range(3):
+            acc = 0.0
+            for k in range(3):
+                for l in range(3):
+                    acc += J[k][a] * A[3 * k + l] * J[l][b]
+            mq[idx[a], idx[b]] += acc
+    e0 = (A[0] * v - A[1] * u) * rr
+    e1 = (A[3] * v - A[4] * u) * rr
+    e2 = (A[6] * v - A[7] * u) * rr
+    for a in range(3):
+        r[idx[a]] -= J[0][a] * e0 + J[1][a] * e1 + J[2][a] * e2
+
+
+@njit(cache=True)
+def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, ds, f, wave, work, mq, r):
+    """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 4) at this time and
+    the rudder angle ``delta``; the FK + HS loads see the wave heading relative to the ship,
+    beta - psi. Returns False if a station left the wave table."""
+    inside = _station_wave(xs, p, m, s, line, wave)
+    rel = math.atan2(p[P_SIN_BETA], p[P_COS_BETA]) - s[S_YAW]
+    cb = math.cos(rel)
+    sb = math.sin(rel)
+    h = _origin_height(s[S_Z], s[S_ROLL], s[S_PITCH], p[P_XG], p[P_ZG])
+    _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], h, s[S_ROLL], s[S_PITCH],
+          cb, sb, wave, f, work)
+    _manoeuvring_loads(p, m, foils, strips, s, delta, f)
+    for j in range(6):
+        ds[j] = s[S_RATE + j]
+    _generalized_system(p, s, f, mq, r)
+    _horizontal_added_mass(m, s, mq, r)
+    _solve_free(p, mq, r, ds[S_RATE:S_RATE + 6])
+    for j in range(S_RATE + 6, ds.shape[0]):
+        ds[j] = 0.0
+    return inside
+
+
+@njit(cache=True)
+def _rudder_step(m, psi, psi_prev, delta0, dt):
+    """Rudder angle after one step (paper 004): command delta_c = G_a (psi - psi_d)
+    + G_b (psi - psi_0) / dt (eq 30), first-order servo tau delta' + delta = delta_c solved exactly
+    over the step with the command held (eq 32), increment limited by the slew rate (eq 33) and
+    the angle by its maximum (eq 34)."""
+    if m[M_AUTOPILOT] == 0.0:
+        return delta0
+    dc = m[M_GA] * (psi - m[M_PSID]) + m[M_GB] * (psi - psi_prev) / dt
+    inc = (1.0 - math.exp(-dt / m[M_TAU])) * (dc - delta0)
+    lim = m[M_SLEW] * dt
+    inc = min(max(inc, -lim), lim)
+    return min(max(delta0 + inc, -m[M_MAX]), m[M_MAX])
+
+
+@njit(cache=True, nogil=True)
+def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
+    """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6,); ``ltab`` (2 nsteps + 1, npoints, 4)
+    the wave line table on the half-step grid. The rudder angle moves once per step (``_rudder_step``,
+    linear in time within the step). ``out`` (nsteps + 1, N_STATE6) receives the states. Returns
+    (index of the last step done, status: OK, CAPSIZED (|roll| > phi_cap) or LEFT_TABLE)."""
+    ns = N_STATE6
+    s = np.empty(ns)
+    k1 = np.empty(ns)
+    k2 = np.empty(ns)
+    k3 = np.empty(ns)
+    k4 = np.empty(ns)
+    tmp = np.empty(ns)
+    f = np.empty(6)
+    mq = np.empty((6, 6))
+    r = np.empty(6)
+    nst = xs.shape[0]
+    work = np.empty((nst, 5))
+    wave = np.empty((nst, 2))
+    for q in range(ns):
+        s[q] = s0[q]
+        out[0, q] = s0[q]
+    psi_prev = s[S_YAW]
+    for n in range(nsteps):
+        j = 2 * n
+        d0 = s[S_RUDDER]
+        d1 = _rudder_step(m, s[S_YAW], psi_prev, d0, dt)
+        dm = 0.5 * (d0 + d1)
+        psi_prev = s[S_YAW]
+        ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, d0, k1, f, wave, work, mq, r)
+        for q in range(ns):
+            tmp[q] = s[q] + 0.5 * dt * k1[q]
+        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, dm, k2, f, wave, work, mq, r)
+        for q in range(ns):
+            tmp[q] = s[q] + 0.5 * dt * k2[q]
+        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, dm, k3, f, wave, work, mq, r)
+        for q in range(ns):
+            tmp[q] = s[q] + dt * k3[q]
+        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 2], tmp, d1, k4, f, wave, work, mq, r)
+        prev = s[S_ROLL]
+        for q in range(ns):
+            s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
+        s[S_RUDDER] = d1
+        _update_amplitude(prev, s)
+        for q in range(ns):
+            out[n + 1, q] = s[q]
+        if abs(s[S_ROLL]) > phi_cap:
+            return n + 1, CAPSIZED
+        if not ok:
+            return n + 1, LEFT_TABLE
+    return nsteps, OK

@@ -1,0 +1,328 @@
+"""6-DOF manoeuvring in waves with course keeping (issue 17, paper 004).
+
+The 3-DOF hybrid model (:mod:`stabflow.dynamics.model`) with surge, sway and yaw set free
+(:data:`stabflow.dynamics.rigid_body.SIX_DOF`), the incident wave evaluated at the stations'
+instantaneous positions, and the forces a free course needs:
+
+* calm-water resistance on the ITTC-57 friction line with a form factor, R = 1/2 rho S_w (1 + k)
+  C_F u|u|, C_F = 0.075 / (log10 Re - 2)^2 (ITTC 1957 model-ship correlation line), with Kato's
+  wetted surface S_w = L (1.7 d + C_B B) (ITTC roll-damping procedure eq 40), and a constant thrust
+  equal to the resistance at the commanded speed, so that the commanded speed holds in calm water;
+* linear hull manoeuvring forces Y = u (Y_v v + Y_r r), N = u (N_v v + N_r r) about midships, from
+  Clarke, Gedling & Hine (1983) unless given (:func:`clarke_derivatives`), acting at a height
+  ``side_force_height`` above the keel for the roll moment, and the inertia of the horizontal
+  added mass of (u, v, r) in body axes: given (e.g. Capytaine's zero-frequency limit,
+  :func:`stabflow.dynamics.hydro.manoeuvring_added_mass`) or from the same regression; the
+  velocity-dependent ideal-fluid forces (Munk moment) are inside the measured derivatives;
+* cross-flow drag of the hull's strips, Y = -1/2 rho sum T(x) C_D(x) |v + r x| (v + r x) dx (the
+  cross-flow principle), with the 2-D section drag C_D against B / 2T from Hoerner's curve
+  (:data:`HOERNER_CROSSFLOW`): it bounds drift and yaw rate where the linear derivatives alone
+  would let a directionally unstable hull spin;
+* foils (rudder, skeg) as lifting surfaces, paper 004 eqs 5-11: effective aspect ratio 2 S / C
+  (eq 6, "groundboarded"), lift slope pi A_R / 2 below A_R = 2 (eq 7) and 2 pi A_R / (A_R + 2)
+  above (eq 8), stall at 24 degree and trailing-edge stall at 12 degree (paper 004's table after
+  eq 9, "Foils");
+* the PD autopilot and the rudder servo of paper 004 eqs 30-34: G_a 0.9, G_b 20 s, proportional
+  band 5 degree, slew rate 5.5 degree/s (tau = P_B / R_m), maximum 35 degree.
+
+Sign conventions: x forward, y to port, z up; yaw psi positive to port (counter-clockwise seen
+from above); rudder angle positive with the trailing edge to starboard, which turns the ship to
+starboard (psi decreasing), so that eq 30's delta_c = G_a (psi - psi_d) + G_b psi' corrects.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import xarray as xr
+
+from stabflow import StabflowError
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics import _kernels_6dof as K6
+from stabflow.dynamics.model import Coefficients, initial_state, parameters
+from stabflow.dynamics.rigid_body import SIX_DOF
+from stabflow.dynamics.roll_damping import NU, friction_radius_area, particulars, section_parameters
+from stabflow.dynamics.tables import SectionTables, kernel_args
+from stabflow.geometry import Sections
+from stabflow.io import annotate
+from stabflow.waves.synthesis import line_wave_table
+
+
+#: Hoerner's 2-D cross-flow drag coefficient C_D against B / (2 T): the digitised curve of the
+#: Marine Systems Simulator (Fossen), HYDRO/Hoerner.m, after Leite, Aranha, Umeda & de Conti (1998),
+#: "Current forces in tankers and bifurcation of equilibrium of turret systems", Applied Ocean
+#: Research 20, 145-156
+HOERNER_CROSSFLOW = np.array([
+    [0.0108623, 1.96608], [0.176606, 1.96573], [0.353025, 1.89756], [0.451863, 1.78718],
+    [0.472838, 1.58374], [0.492877, 1.27862], [0.493252, 1.21082], [0.558473, 1.08356],
+    [0.646401, 0.998631], [0.833589, 0.87959], [0.988002, 0.828415], [1.30807, 0.759941],
+    [1.63918, 0.691442], [1.85998, 0.657076], [2.31288, 0.630693], [2.59998, 0.596186],
+    [3.00877, 0.586846], [3.45075, 0.585909], [3.7379, 0.559877], [4.00309, 0.559315]])
+
+
+def crossflow_drag_coefficient(breadth, draft) -> np.ndarray:
+    """2-D cross-flow drag coefficient of sections of ``breadth`` and ``draft`` [m] (Hoerner's
+    curve, held at its ends)."""
+    r = np.asarray(breadth, float) / (2.0 * np.maximum(np.asarray(draft, float), 1e-9))
+    return np.interp(r, HOERNER_CROSSFLOW[:, 0], HOERNER_CROSSFLOW[:, 1])
+
+
+def clarke_derivatives(length: float, breadth: float, draft: float, cb: float) -> dict[str, float]:
+    """Linear manoeuvring derivatives in the prime system (forces / (1/2 rho L^2 U^2), moments /
+    (1/2 rho L^3 U^2), v' = v / U, r' = r L / U) from the regressions of Clarke, Gedling & Hine
+    (1983), "The application of manoeuvring criteria in hull design using linear theory", Trans.
+    RINA 125, 45-68, as restated in the Marine Systems Simulator (Fossen), ``clarke83.m``.
+
+    Returns ``yv, yr, nv, nr`` (damping) and ``yvdot, yrdot, nvdot, nrdot`` (added mass, prime
+    system with L^3, L^4, L^4, L^5).
+    """
+    L, B, T = length, breadth, draft
+    S = np.pi * (T / L) ** 2
+    return {
+        # Clarke et al. (1983), rotating-arm and PMM regressions
+        "yvdot": -S * (1 + 0.16 * cb * B / T - 5.1 * (B / L) ** 2),
+        "yrdot": -S * (0.67 * B / L - 0.0033 * (B / T) ** 2),
+        "nvdot": -S * (1.1 * B / L - 0.041 * B / T),
+        "nrdot": -S * (1 / 12 + 0.017 * cb * B / T - 0.33 * B / L),
+        "yv": -S * (1 + 0.4 * cb * B / T),
+        "yr": -S * (-1 / 2 + 2.2 * B / L - 0.08 * B / T),
+        "nv": -S * (1 / 2 + 2.4 * T / L),
+        "nr": -S * (1 / 4 + 0.039 * B / T - 0.56 * B / L),
+    }
+
+
+def ittc57_friction(reynolds) -> np.ndarray:
+    """Frictional resistance coefficient C_F = 0.075 / (log10 Re - 2)^2 (ITTC 1957 line)."""
+    return 0.075 / (np.log10(np.asarray(reynolds, float)) - 2.0) ** 2
+
+
+def lift_slope(span: float, chord: float) -> float:
+    """Lift-curve slope C_La [1/rad] of a foil (paper 004 eqs 6-8): effective aspect ratio
+    A_R = 2 S / C (groundboarded), C_La = pi A_R / 2 if A_R < 2 else 2 pi A_R / (A_R + 2)."""
+    ar = 2.0 * span / chord  # eq 6
+    return np.pi / 2.0 * ar if ar < 2.0 else 2.0 * np.pi / (1.0 + 2.0 / ar)  # eqs 7, 8
+
+
+@dataclass(frozen=True)
+class Foil:
+    """A vertical lifting surface: centre ``x`` (from midships, + forward) and ``z`` (above the
+    baseline) [m], ``span`` and ``chord`` [m], stall angles [degree] (paper 004: foils 24 and 12),
+    ``rudder`` True if it turns with the rudder angle."""
+
+    x: float
+    z: float
+    span: float
+    chord: float
+    rudder: bool = False
+    stall_deg: float = 24.0
+    trail_deg: float = 12.0
+
+
+@dataclass(frozen=True)
+class Autopilot:
+    """Paper 004 eqs 30-34 (its values as defaults): gains ``ga`` [-] and ``gb`` [s], proportional
+    band and slew rate of the servo [degree, degree/s], maximum rudder angle [degree], desired heading
+    [degree]; ``active`` False holds the rudder at ``rudder_deg``."""
+
+    ga: float = 0.9
+    gb: float = 20.0
+    proportional_band_deg: float = 5.0
+    slew_rate_deg_s: float = 5.5
+    max_deg: float = 35.0
+    heading_deg: float = 0.0
+    active: bool = True
+    rudder_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Manoeuvring:
+    """The 6-DOF additions for one ship and condition (see the module docstring).
+
+    ``derivatives`` overrides Clarke's prime-system values by name; ``form_factor`` k of the
+    resistance [-] (0: the friction line alone); ``side_force_height`` [m above the keel] where the
+    hull side force acts (None: half the draft, the centre of a rectangular lateral area);
+    ``added_mass`` (3, 3) of (surge, sway, yaw) about G in body axes [kg, kg m, kg m^2], or None for
+    Clarke's regression (which has no surge term: A11 = 0).
+    """
+
+    foils: tuple = ()
+    autopilot: Autopilot = field(default_factory=Autopilot)
+    derivatives: dict = field(default_factory=dict)
+    form_factor: float = 0.0
+    side_force_height: float | None = None
+    added_mass: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class SixDof:
+    """Kernel inputs of a 6-DOF simulation: sections, tables, ``p`` (N_PARAMETERS,), ``m`` (N_M,),
+    ``foils`` (nf, F_N), the rest state ``s0`` (N_STATE6,), the commanded ``speed`` [m/s] and the
+    wave heading [degree] relative to the mean course."""
+
+    sec: Sections
+    tables: SectionTables | None
+    p: np.ndarray
+    m: np.ndarray
+    foils: np.ndarray
+    strips: np.ndarray
+    s0: np.ndarray
+    speed: float
+    heading_deg: float
+    length: float
+    derivatives: dict
+
+
+def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, heading_deg: float, speed: float,
+                  man: Manoeuvring, tables: SectionTables | None = None) -> SixDof:
+    """Assemble the 6-DOF kernel inputs for a ship (sections, statics, 3-DOF coefficients ``co``),
+    water density ``rho`` [kg/m^3], wave heading [degree] relative to the course, commanded
+    ``speed`` [m/s] and the manoeuvring description ``man``."""
+    lcg, kg = float(st["lcg"]), float(st["kg"])
+    sp = section_parameters(sec, st)
+    hp = particulars(sp)
+    L, B, T = hp.length, hp.breadth, hp.draft
+    der = clarke_derivatives(L, B, T, hp.cb) | dict(man.derivatives)
+    q = 0.5 * rho
+    p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
+    m = np.zeros(K6.N_M)
+    m[K6.M_SPEED] = speed
+    # dimensional hull derivatives per unit surge velocity (prime system times 1/2 rho L^n)
+    m[K6.M_YV] = q * L**2 * der["yv"]
+    m[K6.M_YR] = q * L**3 * der["yr"]
+    m[K6.M_NV] = q * L**3 * der["nv"]
+    m[K6.M_NR] = q * L**4 * der["nr"]
+    zh = 0.5 * T if man.side_force_height is None else float(man.side_force_height)
+    m[K6.M_ZH] = zh - kg
+    s_w, _ = friction_radius_area(L, B, T, hp.cb, hp.og)  # ITTC eq 40
+    m[K6.M_RES] = q * s_w * (1.0 + man.form_factor)
+    m[K6.M_LNU] = L / NU
+    re = max(speed * L / NU, 1e3)
+    m[K6.M_THRUST] = m[K6.M_RES] * float(ittc57_friction(re)) * speed**2
+    ap = man.autopilot
+    m[K6.M_GA] = ap.ga
+    m[K6.M_GB] = ap.gb
+    m[K6.M_TAU] = ap.proportional_band_deg / ap.slew_rate_deg_s  # eq 31: tau = P_B / R_m
+    m[K6.M_SLEW] = np.radians(ap.slew_rate_deg_s)
+    m[K6.M_MAX] = np.radians(ap.max_deg)
+    m[K6.M_PSID] = np.radians(ap.heading_deg)
+    m[K6.M_AUTOPILOT] = 1.0 if ap.active else 0.0
+    if man.added_mass is None:
+        # body-axis added mass of (u, v, r): -(prime added-mass derivatives) 1/2 rho L^n
+        ab = np.zeros((3, 3))
+        ab[1, 1] = -q * L**3 * der["yvdot"]
+        ab[1, 2] = -q * L**4 * der["yrdot"]
+        ab[2, 1] = -q * L**4 * der["nvdot"]
+        ab[2, 2] = -q * L**5 * der["nrdot"]
+        src = (f"Clarke et al. (1983) regression at B/L {B / L:.3f}, B/T {B / T:.2f}, C_B {hp.cb:.3f}: give the added "
+               "mass (e.g. Capytaine's zero-frequency limit, stabflow.dynamics.hydro.manoeuvring_added_mass)")
+    else:
+        ab = np.asarray(man.added_mass, float).reshape(3, 3)
+        src = "the given added mass"
+    # the horizontal inertia (rigid body about G plus added) must be positive definite
+    rigid = np.diag([co.mass, co.mass, co.i66])
+    total = rigid + 0.5 * (ab + ab.T)
+    if np.min(np.linalg.eigvalsh(total)) <= 0.0:
+        raise StabflowError(f"manoeuvring: the surge-sway-yaw inertia (rigid body + added mass) is not positive "
+                            f"definite with {src}")
+    m[K6.M_AB:K6.M_AB + 9] = ab.ravel()
+    foils = np.zeros((len(man.foils), K6.F_N))
+    for j, f in enumerate(man.foils):
+        foils[j] = (f.x - lcg, f.z - kg, f.span * f.chord, lift_slope(f.span, f.chord), np.radians(f.stall_deg),
+                    np.radians(f.trail_deg), 1.0 if f.rudder else 0.0, 2.0 * f.span / f.chord)
+    ok = sp["valid"].values
+    cd = crossflow_drag_coefficient(sp["breadth"].values, sp["draft"].values)
+    strips = np.column_stack([sp["x"].values[ok] - lcg, q * (sp["draft"].values * cd * sp["dx"].values)[ok]])
+    s0 = np.zeros(K6.N_STATE6)
+    s0[:K.N_STATE] = initial_state(sec, st)
+    s0[K6.S_RUDDER] = 0.0 if ap.active else np.radians(ap.rudder_deg)
+    return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der)
+
+
+def wave_line(model: SixDof, waves, duration: float, dt: float, margin: float, points_per_wavelength: float = 8.0):
+    """Line table (2 nsteps + 1, npoints, 4) of the wave for a record and its grid (xi0, dxi) [m].
+
+    The points cover the ship's stations at any heading plus ``margin`` [m] of surge and sway
+    drift either side, spaced at the shortest component's wavelength / ``points_per_wavelength``
+    (cubic Hermite error about (k h)^4 / 384, 0.1 % at 8 points)."""
+    amp, omega, phase = (np.asarray(a, float) for a in waves)
+    nsteps = int(round(duration / dt))
+    t_half = np.arange(2 * nsteps + 1) * 0.5 * dt
+    xg = float(model.p[K.P_XG])
+    reach = float(np.max(np.abs(model.sec.x - xg))) + margin
+    centre = xg * np.cos(np.radians(model.heading_deg))
+    if len(amp):
+        kmax = float(np.max(omega)) ** 2 / float(model.p[K.P_G])
+        h = 2 * np.pi / kmax / points_per_wavelength
+    else:
+        h = reach
+    n = int(np.ceil(2 * reach / h)) + 1
+    xi = centre - reach + h * np.arange(n)
+    if len(amp):
+        tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half)
+    else:
+        tab = np.zeros((len(t_half), n, 4))
+    return np.ascontiguousarray(tab), float(xi[0]), float(h)
+
+
+def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, margin: float | None = None,
+                     phi_cap_deg: float = 90.0, s0=None, points_per_wavelength: float = 8.0) -> xr.Dataset:
+    """Simulate one 6-DOF record from the calm-water rest state (or ``s0``).
+
+    Parameters
+    ----------
+    waves : tuple of arrays
+        (amp [m], omega [rad/s], phase [rad]) of the wave components (empty: calm water).
+    duration, dt : float
+        Record length and RK4 step [s].
+    margin : float, optional
+        Surge/sway drift [m] the wave table covers beyond the hull (default: one ship length plus
+        the distance the ship covers in the record at 20 % of its speed).
+    phi_cap_deg : float
+        Roll angle that ends the record as a capsize [degree].
+
+    Returns
+    -------
+    xarray.Dataset along ``time`` [s]: position of G in the frame moving with the commanded speed
+    (``surge``, ``sway`` [m]), ``heave`` of G [m], ``roll``, ``pitch``, ``yaw`` and ``rudder``
+    [degree], body surge and sway velocities ``u``, ``v`` [m/s], yaw rate [degree/s]; attributes
+    ``status`` (0 ok, 1 capsized, 2 left the wave table) and ``end_time`` [s].
+    """
+    if margin is None:
+        margin = model.length + 0.2 * model.speed * duration
+    ltab, xi0, h = wave_line(model, waves, duration, dt, margin, points_per_wavelength)
+    m = model.m.copy()
+    m[K6.M_XI0] = xi0
+    m[K6.M_DXI] = h
+    nsteps = int(round(duration / dt))
+    out = np.empty((nsteps + 1, K6.N_STATE6))
+    start = model.s0 if s0 is None else np.asarray(s0, float)
+    done, status = K6._simulate6(*kernel_args(model.sec, model.tables), model.p, m, model.foils, model.strips, ltab, dt, nsteps,
+                                 start, np.radians(phi_cap_deg), out)
+    return six_dof_dataset(model, out[:done + 1], dt, status)
+
+
+def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -> xr.Dataset:
+    """Time histories of a 6-DOF record (see :func:`simulate_six_dof`)."""
+    n = len(states)
+    t = np.arange(n) * dt
+    r = K.S_RATE
+    psi = states[:, K.S_YAW]
+    xd = model.speed + states[:, r + K.S_X]
+    yd = states[:, r + K.S_Y]
+    th0 = model.s0[K.S_PITCH]
+    ds = xr.Dataset(
+        {
+            "surge": ("time", states[:, K.S_X]), "sway": ("time", states[:, K.S_Y]),
+            "heave": ("time", states[:, K.S_Z] - model.s0[K.S_Z]),
+            "roll": ("time", np.degrees(states[:, K.S_ROLL])),
+            "pitch": ("time", np.degrees(states[:, K.S_PITCH] - th0)),
+            "yaw": ("time", np.degrees(psi)), "rudder": ("time", np.degrees(states[:, K6.S_RUDDER])),
+            "u": ("time", np.cos(psi) * xd + np.sin(psi) * yd), "v": ("time", -np.sin(psi) * xd + np.cos(psi) * yd),
+            "yaw_rate": ("time", np.degrees(states[:, r + K.S_YAW])),
+        },
+        coords={"time": t},
+    )
+    ds.attrs.update(status=int(status), end_time=float(t[-1]), dt=dt, speed=model.speed,
+                    heading_deg=model.heading_deg)
+    return annotate(ds)

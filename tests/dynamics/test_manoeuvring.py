@@ -1,0 +1,211 @@
+"""6-DOF manoeuvring in waves (issue 17): moving-station waves, the constrained case against the
+3-DOF kernel, foils, resistance and thrust, rudder servo and autopilot, calm-water manoeuvres."""
+
+
+import numpy as np
+import pytest
+
+from stabflow import StabflowError
+from stabflow.constants import G, KNOT
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics import _kernels_6dof as K6
+from stabflow.dynamics.hydro import bem_mesh, manoeuvring_added_mass
+from stabflow.dynamics.manoeuvring import (Autopilot, Foil, Manoeuvring, build_six_dof, crossflow_drag_coefficient,
+                                           ittc57_friction, lift_slope, simulate_six_dof, wave_line)
+from stabflow.dynamics.model import parameters
+from stabflow.dynamics.rigid_body import THREE_DOF
+from stabflow.dynamics.tables import kernel_args, section_tables
+from stabflow.hydrostatics.statics import equilibrium
+from stabflow.waves.synthesis import line_wave_table, station_wave_table
+
+from .conftest import ship_model
+
+SPEED = 10.0 * KNOT
+RUDDER = Foil(x=-11.0, z=1.5, span=2.0, chord=1.2, rudder=True)
+
+
+@pytest.fixture(scope="module")
+def trawler():
+    """The trawler (tank-test loading) with section tables and Capytaine's zero-frequency
+    surge-sway-yaw added mass."""
+    ship, sec, st, co = ship_model("trawler")
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    ab = manoeuvring_added_mass(bem_mesh(ship), h0, th0, float(st["lcg"]), float(st["kg"]), ship.rho)
+    return ship, sec, st, co, section_tables(sec, 181, 101), ab
+
+
+def six_dof(trawler, heading=45.0, **kw):
+    ship, sec, st, co, tabs, ab = trawler
+    man = Manoeuvring(foils=(RUDDER,), added_mass=ab, **kw)
+    return build_six_dof(sec, st, co, ship.rho, heading, SPEED, man, tables=tabs)
+
+
+# ------------------------------------------------------------------------------------ waves
+def test_line_table_equals_station_table_on_the_ship_axis():
+    """A station at x on the ship's axis has xi = x cos(beta): the same eta and S (exact)."""
+    rng = np.random.default_rng(3)
+    amp, w, ph = rng.uniform(0.1, 1.0, 12), rng.uniform(0.4, 1.6, 12), rng.uniform(-np.pi, np.pi, 12)
+    xs = np.linspace(-40.0, 40.0, 9)
+    t = np.arange(50) * 0.25
+    for beta in (0.0, 45.0, 150.0):
+        st = station_wave_table(amp, w, ph, xs, beta, 5.0, t)
+        ln = line_wave_table(amp, w, ph, xs * np.cos(np.radians(beta)), beta, 5.0, t)
+        np.testing.assert_allclose(ln[..., :2], st, atol=1e-12)
+
+
+def test_line_table_derivatives_match_finite_differences():
+    """dS/dxi and d2S/dxi2 of the table against central differences of S and dS/dxi (h = 1 mm)."""
+    rng = np.random.default_rng(4)
+    amp, w, ph = rng.uniform(0.1, 1.0, 8), rng.uniform(0.4, 1.6, 8), rng.uniform(-np.pi, np.pi, 8)
+    xi = np.array([-3.0, 0.0, 7.5])
+    h = 1e-3
+    t = np.array([0.0, 0.5])
+    a, b = (line_wave_table(amp, w, ph, xi + s * h, 30.0, 3.0, t) for s in (1, -1))
+    mid = line_wave_table(amp, w, ph, xi, 30.0, 3.0, t)
+    np.testing.assert_allclose((a[..., 1] - b[..., 1]) / (2 * h), mid[..., 2], rtol=1e-5, atol=1e-9)
+    np.testing.assert_allclose((a[..., 2] - b[..., 2]) / (2 * h), mid[..., 3], rtol=1e-5, atol=1e-9)
+
+
+def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
+    """Hermite interpolation in the line table at 8 points per shortest wavelength: eta and S at
+    displaced, yawed stations within 0.2 % of the largest value (direct sum over components)."""
+    model = six_dof(trawler, heading=30.0)
+    rng = np.random.default_rng(5)
+    amp, w, ph = rng.uniform(0.1, 0.5, 20), np.linspace(0.6, 2.2, 20), rng.uniform(-np.pi, np.pi, 20)
+    ltab, xi0, h = wave_line(model, (amp, w, ph), 2.0, 0.5, 30.0)
+    m = model.m.copy()
+    m[K6.M_XI0], m[K6.M_DXI] = xi0, h
+    s = model.s0.copy()
+    s[K.S_X], s[K.S_Y], s[K.S_YAW] = 7.3, -4.1, np.radians(25.0)
+    wave = np.empty((len(model.sec.x), 2))
+    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], wave)
+    xg = model.p[K.P_XG]
+    d = model.sec.x - xg
+    X = s[K.S_X] + xg + np.cos(s[K.S_YAW]) * d
+    Y = s[K.S_Y] + np.sin(s[K.S_YAW]) * d
+    b = np.radians(30.0)
+    k = w**2 / G
+    psi = k * (X * np.cos(b) + Y * np.sin(b))[:, None] - (w - k * SPEED * np.cos(b)) * 0.75 + ph  # ltab[3]: t = 3 dt / 2
+    eta = (amp * np.cos(psi)).sum(1)
+    slope = (-amp * k * np.sin(psi)).sum(1)
+    assert np.max(np.abs(wave[:, 0] - eta)) < 2e-3 * np.max(np.abs(eta))
+    assert np.max(np.abs(wave[:, 1] - slope)) < 2e-3 * np.max(np.abs(slope))
+
+
+# ------------------------------------------------------------------------- constrained case
+def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler):
+    """Surge, sway and yaw held, no foils, wave nodes at the stations: heave, roll and pitch equal
+    the 3-DOF kernel's to round-off (same loads, same rigid-body equations)."""
+    ship, sec, st, co, tabs, ab = trawler
+    x = np.asarray(sec.x, float)
+    assert np.allclose(np.diff(x), x[1] - x[0])
+    beta = 40.0
+    model = build_six_dof(sec, st, co, ship.rho, beta, SPEED, Manoeuvring(added_mass=ab), tables=tabs)
+    p6 = model.p.copy()
+    p6[K.P_FREE:K.P_FREE + 6] = THREE_DOF
+    dt, n = 0.05, 400
+    t = np.arange(2 * n + 1) * 0.5 * dt
+    comps = (np.array([0.6, 0.3]), np.array([1.2, 0.8]), np.array([0.3, -1.0]))
+    cb = np.cos(np.radians(beta))
+    ltab = line_wave_table(*comps, x * cb, beta, SPEED, t)
+    m = model.m.copy()
+    m[K6.M_XI0], m[K6.M_DXI] = x[0] * cb, (x[1] - x[0]) * cb
+    s0 = model.s0.copy()
+    s0[K.S_RATE + K.S_ROLL] = 0.05
+    out6 = np.empty((n + 1, K6.N_STATE6))
+    last, status = K6._simulate6(*kernel_args(sec, tabs), p6, m, np.zeros((0, K6.F_N)), model.strips, ltab, dt, n,
+                                 s0, np.radians(90.0), out6)
+    assert (last, status) == (n, K6.OK)
+    p3 = parameters(co, ship.rho, float(st["lcg"]), float(st["kg"]), beta)
+    out3 = np.empty((n + 1, K.N_STATE))
+    K._simulate(*kernel_args(sec, tabs), p3, station_wave_table(*comps, x, beta, SPEED, t), dt, 0, n,
+                s0[:K.N_STATE], np.radians(90.0), out3, np.empty((0, 6)))
+    for j in (K.S_Z, K.S_ROLL, K.S_PITCH):
+        scale = np.max(np.abs(out3[:, j] - out3[0, j])) + 1e-3
+        np.testing.assert_allclose(out6[:, j], out3[:, j], rtol=0, atol=1e-9 * scale + 1e-12)
+    assert np.all(out6[:, [K.S_X, K.S_Y, K.S_YAW]] == 0.0)
+
+
+# ------------------------------------------------------------------------- forces and servo
+def test_lift_slope_and_foil_forces():
+    """Paper 004 eqs 6-8 and 9, 11: small-angle lift 1/2 rho V^2 S C C_La alpha normal to the flow,
+    zero between the stall angles, lifting-line induced drag C_L^2 / (pi A_R) along the flow."""
+    assert lift_slope(0.5, 1.0) == pytest.approx(np.pi / 2 * 1.0)            # A_R = 1 < 2: eq 7
+    assert lift_slope(2.0, 1.0) == pytest.approx(2 * np.pi * 4.0 / 6.0)      # A_R = 4: eq 8
+    rho, area, cla, ar = 1025.0, 2.4, 3.0, 3.3
+    fx, fy = K6._foil_lift(5.0, 0.0, np.radians(5.0), rho, area, cla, np.radians(24), np.radians(12), ar)
+    cl = cla * np.radians(5.0)
+    q = 0.5 * rho * 25.0 * area
+    assert fy == pytest.approx(q * cl, rel=1e-12)                     # nose to port: lift to port
+    assert fx == pytest.approx(-q * cl**2 / (np.pi * ar), rel=1e-12)  # induced drag astern
+    assert K6._foil_lift(5.0, 0.0, np.radians(30.0), rho, area, cla, np.radians(24), np.radians(12), ar) == (0.0, 0.0)
+    # the foil moving to port (v > 0) at zero rudder is pushed to starboard: it damps sway
+    assert K6._foil_lift(5.0, 0.5, 0.0, rho, area, cla, np.radians(24), np.radians(12), ar)[1] < 0.0
+
+
+def test_crossflow_drag_coefficient_follows_hoerner():
+    assert crossflow_drag_coefficient(2.0, 1.0) == pytest.approx(0.828415, rel=0.02)   # B/2T = 1
+    assert crossflow_drag_coefficient(0.02, 1.0) == pytest.approx(1.96608, rel=1e-3)   # flat plate end
+
+
+def test_rudder_servo_paper_004_eqs_31_to_34():
+    """Exact first-order lag over a step, slew-rate limit and maximum angle."""
+    m = np.zeros(K6.N_M)
+    m[K6.M_AUTOPILOT] = 1.0
+    m[K6.M_GA], m[K6.M_GB] = 0.9, 20.0
+    m[K6.M_TAU] = 5.0 / 5.5
+    m[K6.M_SLEW], m[K6.M_MAX] = np.radians(5.5), np.radians(35.0)
+    dt = 0.01
+    # small command: the exact lag increment (1 - exp(-dt / tau)) (delta_c - delta_0)
+    psi = np.radians(0.01)
+    d = K6._rudder_step(m, psi, psi, 0.0, dt)
+    assert d == pytest.approx((1 - np.exp(-dt / m[K6.M_TAU])) * 0.9 * psi, rel=1e-12)
+    # large command: the slew rate limits the increment to R_m dt
+    assert K6._rudder_step(m, np.radians(30.0), np.radians(30.0), 0.0, dt) == pytest.approx(np.radians(5.5) * dt)
+    # the angle never exceeds A_m
+    assert K6._rudder_step(m, np.radians(80.0), np.radians(80.0), np.radians(34.99), 1.0) == pytest.approx(np.radians(35.0))
+    m[K6.M_AUTOPILOT] = 0.0
+    assert K6._rudder_step(m, 1.0, 0.0, 0.1, dt) == 0.1
+
+
+def test_resistance_and_thrust_hold_the_commanded_speed(trawler):
+    """ITTC-57 line at Re 1e7 is 0.075 / 25; in calm water with the rudder amidships the ship runs
+    straight at the commanded speed (the thrust equals the resistance there)."""
+    assert float(ittc57_friction(1e7)) == pytest.approx(0.003)
+    model = six_dof(trawler, autopilot=Autopilot(active=False))
+    ds = simulate_six_dof(model, ([], [], []), 60.0, 0.05)
+    assert ds.attrs["status"] == K6.OK
+    assert float(np.max(np.abs(ds["u"] - SPEED))) < 1e-9
+    for v in ("v", "yaw", "roll", "sway", "surge"):
+        assert float(np.max(np.abs(ds[v]))) < 1e-9, v
+
+
+def test_rudder_turns_the_ship_to_starboard_and_the_autopilot_recovers_a_step(trawler):
+    """Positive rudder (trailing edge to starboard) turns to starboard (yaw decreasing); the PD
+    autopilot of paper 004 takes a 10 degree heading change monotonically for the first 30 s
+    (its derivative gain of 20 s overdamps the loop), overshoots by less than 0.05 degree (the
+    servo lag; measured 0.03) and settles within 0.1 degree."""
+    model = six_dof(trawler, autopilot=Autopilot(active=False, rudder_deg=10.0))
+    ds = simulate_six_dof(model, ([], [], []), 20.0, 0.05)
+    assert float(ds["yaw"][-1]) < -5.0
+    model = six_dof(trawler, autopilot=Autopilot(heading_deg=10.0))
+    ds = simulate_six_dof(model, ([], [], []), 180.0, 0.05)
+    yaw = ds["yaw"].values
+    assert yaw.max() <= 10.0 + 0.05
+    assert abs(yaw[-1] - 10.0) < 0.1
+    assert np.all(np.diff(yaw[: int(30 / 0.05)]) >= -1e-9)
+
+
+def test_non_positive_inertia_is_an_error(trawler):
+    ship, sec, st, co, tabs, ab = trawler
+    with pytest.raises(StabflowError, match="not positive definite"):
+        build_six_dof(sec, st, co, ship.rho, 45.0, SPEED, Manoeuvring(added_mass=-3.0 * ab), tables=tabs)
+
+
+def test_zero_frequency_added_mass_is_symmetric_and_positive(trawler):
+    ab = trawler[5]
+    np.testing.assert_allclose(ab, ab.T)
+    assert np.all(np.linalg.eigvalsh(ab) > 0)
+    mass = trawler[3].mass
+    assert 0.02 * mass < ab[0, 0] < 0.3 * mass     # surge: a few percent of the mass
+    assert 0.3 * mass < ab[1, 1] < 2.0 * mass      # sway: of the order of the mass
