@@ -151,28 +151,34 @@ def test_crossflow_drag_coefficient_follows_hoerner():
 def test_rudder_servo_paper_004_eqs_31_to_34():
     """Exact first-order lag over a step, slew-rate limit and maximum angle."""
     m = np.zeros(K6.N_M)
-    m[K6.M_AUTOPILOT] = 1.0
+    m[K6.M_STEERING] = K6.STEER_AUTOPILOT
     m[K6.M_GA], m[K6.M_GB] = 0.9, 20.0
     m[K6.M_TAU] = 5.0 / 5.5
     m[K6.M_SLEW], m[K6.M_MAX] = np.radians(5.5), np.radians(35.0)
     dt = 0.01
     # small command: the exact lag increment (1 - exp(-dt / tau)) (delta_c - delta_0)
     psi = np.radians(0.01)
-    d = K6._rudder_step(m, psi, psi, 0.0, dt)
+    d, _ = K6._rudder_step(m, psi, psi, 0.0, dt, 1.0)
     assert d == pytest.approx((1 - np.exp(-dt / m[K6.M_TAU])) * 0.9 * psi, rel=1e-12)
     # large command: the slew rate limits the increment to R_m dt
-    assert K6._rudder_step(m, np.radians(30.0), np.radians(30.0), 0.0, dt) == pytest.approx(np.radians(5.5) * dt)
+    assert K6._rudder_step(m, np.radians(30.0), np.radians(30.0), 0.0, dt, 1.0)[0] == pytest.approx(np.radians(5.5) * dt)
     # the angle never exceeds A_m
-    assert K6._rudder_step(m, np.radians(80.0), np.radians(80.0), np.radians(34.99), 1.0) == pytest.approx(np.radians(35.0))
-    m[K6.M_AUTOPILOT] = 0.0
-    assert K6._rudder_step(m, 1.0, 0.0, 0.1, dt) == 0.1
+    assert K6._rudder_step(m, np.radians(80.0), np.radians(80.0), np.radians(34.99), 1.0, 1.0)[0] == pytest.approx(np.radians(35.0))
+    # fixed helm: the servo holds the commanded angle
+    m[K6.M_STEERING], m[K6.M_HELM] = K6.STEER_FIXED, 0.1
+    assert K6._rudder_step(m, 1.0, 0.0, 0.1, dt, 1.0)[0] == 0.1
+    # zig-zag: the helm reverses when the heading passes the switch angle
+    m[K6.M_STEERING], m[K6.M_ZIGZAG] = K6.STEER_ZIGZAG, np.radians(10.0)
+    assert K6._rudder_step(m, np.radians(-9.0), 0.0, 0.1, dt, 1.0)[1] == 1.0
+    assert K6._rudder_step(m, np.radians(-10.5), 0.0, 0.1, dt, 1.0)[1] == -1.0
+    assert K6._rudder_step(m, np.radians(10.5), 0.0, -0.1, dt, -1.0)[1] == 1.0
 
 
 def test_resistance_and_thrust_hold_the_commanded_speed(trawler):
     """ITTC-57 line at Re 1e7 is 0.075 / 25; in calm water with the rudder amidships the ship runs
     straight at the commanded speed (the thrust equals the resistance there)."""
     assert float(ittc57_friction(1e7)) == pytest.approx(0.003)
-    model = six_dof(trawler, autopilot=Autopilot(active=False))
+    model = six_dof(trawler, autopilot=Autopilot(mode="fixed"))
     ds = simulate_six_dof(model, ([], [], []), 60.0, 0.05)
     assert ds.attrs["status"] == K6.OK
     assert float(np.max(np.abs(ds["u"] - SPEED))) < 1e-9
@@ -185,7 +191,7 @@ def test_rudder_turns_the_ship_to_starboard_and_the_autopilot_recovers_a_step(tr
     autopilot of paper 004 takes a 10 degree heading change monotonically for the first 30 s
     (its derivative gain of 20 s overdamps the loop), overshoots by less than 0.05 degree (the
     servo lag; measured 0.03) and settles within 0.1 degree."""
-    model = six_dof(trawler, autopilot=Autopilot(active=False, rudder_deg=10.0))
+    model = six_dof(trawler, autopilot=Autopilot(mode="fixed", rudder_deg=10.0))
     ds = simulate_six_dof(model, ([], [], []), 20.0, 0.05)
     assert float(ds["yaw"][-1]) < -5.0
     model = six_dof(trawler, autopilot=Autopilot(heading_deg=10.0))
@@ -209,3 +215,67 @@ def test_zero_frequency_added_mass_is_symmetric_and_positive(trawler):
     mass = trawler[3].mass
     assert 0.02 * mass < ab[0, 0] < 0.3 * mass     # surge: a few percent of the mass
     assert 0.3 * mass < ab[1, 1] < 2.0 * mass      # sway: of the order of the mass
+
+
+# ------------------------------------------------------------------------------ manoeuvres
+def _record(t, X, Y, yaw_deg, rudder_deg, speed, u=None, v=None, r_deg=None, status=K6.OK):
+    import xarray as xr
+
+    u = np.full_like(t, speed) if u is None else u
+    ds = xr.Dataset({"surge": ("time", X - speed * t), "sway": ("time", Y), "yaw": ("time", yaw_deg),
+                     "rudder": ("time", rudder_deg), "u": ("time", u), "v": ("time", np.zeros_like(t) if v is None else v),
+                     "yaw_rate": ("time", np.gradient(yaw_deg, t) if r_deg is None else r_deg)}, coords={"time": t})
+    ds.attrs.update(speed=speed, dt=float(t[1] - t[0]), status=status, course_deg=0.0, max_rudder_deg=35.0)
+    return ds
+
+
+def test_turning_circle_of_an_exact_circle():
+    """A turn to starboard on a circle of radius R from t = 0: advance R and transfer R at 90 degree,
+    tactical diameter 2 R, steady diameter 2 R, no speed loss."""
+    from stabflow.dynamics.manoeuvres import turning_circle
+
+    R, V = 40.0, 5.0
+    t = np.linspace(0.0, 2 * np.pi * R / V, 20001)
+    a = V * t / R
+    ds = _record(t, R * np.sin(a), -R * (1 - np.cos(a)), -np.degrees(a), np.full_like(t, 35.0), V,
+                 r_deg=np.full_like(t, -np.degrees(V / R)))
+    tc = turning_circle(ds)
+    assert tc["advance"] == pytest.approx(R, rel=1e-6)
+    assert tc["transfer"] == pytest.approx(R, rel=1e-6)
+    assert tc["tactical_diameter"] == pytest.approx(2 * R, rel=1e-6)
+    assert tc["steady_diameter"] == pytest.approx(2 * R, rel=1e-9)
+    assert tc["speed_loss"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_zigzag_overshoots_of_a_prescribed_heading():
+    """Heading -15 sin(w t) then +13 after the second reversal: overshoots 5 and 3 degree."""
+    from stabflow.dynamics.manoeuvres import zigzag_overshoots
+
+    t = np.linspace(0.0, 100.0, 100001)
+    w = 2 * np.pi / 50.0
+    psi = np.where(t < 25.0, -15 * np.sin(w * t), -13 * np.sin(w * t))
+    ds = _record(t, 5 * t, 0 * t, psi, 10 * np.sign(np.sin(w * t)), 5.0)
+    first, second = zigzag_overshoots(ds, 10.0)
+    assert first == pytest.approx(5.0, abs=1e-6)
+    assert second == pytest.approx(3.0, abs=1e-6)
+
+
+def test_record_events():
+    """Broach needs the deviation and the rudder at its stop; surf-riding needs the lock to last."""
+    from stabflow.dynamics.manoeuvres import record_events
+
+    t = np.arange(0.0, 60.0, 0.1)
+    c = 8.0
+    speed = 5.0
+    # the ship accelerates to the celerity at t = 20 s and rides the wave for 30 s (heading 0: following)
+    vx = np.where((t >= 20.0) & (t < 50.0), c, speed)
+    X = np.concatenate([[0.0], np.cumsum(vx[:-1] * 0.1)])
+    yaw = np.where(t > 40.0, 50.0, 0.0)
+    rud = np.where(t > 45.0, -35.0, 0.0)
+    ds = _record(t, X, 0 * t, yaw, rud, speed)
+    ev = record_events(ds, broach_deg=30.0, celerity=c, surf_tolerance=0.05, surf_min_s=10.0, heading_deg=0.0)
+    assert ev["broach"] == 1 and ev["broach_time"] == pytest.approx(45.1, abs=0.11)
+    assert ev["surf_riding"] == 1 and ev["surf_riding_longest"] == pytest.approx(30.0, abs=0.3)
+    assert ev["capsized"] == 0 and ev["capsize_time"] == -1.0
+    ev = record_events(ds, broach_deg=30.0, celerity=c, surf_tolerance=0.05, surf_min_s=40.0, heading_deg=0.0)
+    assert ev["surf_riding"] == 0 and ev["surf_riding_time"] == -1.0

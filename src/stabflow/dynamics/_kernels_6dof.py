@@ -46,8 +46,10 @@ M_TAU = 13         # servo time constant P_B / R_m [s] (eq 31)
 M_SLEW = 14        # slew rate R_m [rad/s] (eq 33)
 M_MAX = 15         # maximum rudder angle A_m [rad] (eq 34)
 M_PSID = 16        # desired heading [rad]
-M_AUTOPILOT = 17   # 1: autopilot; 0: rudder held at its initial angle
-M_AB = 18          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
+M_STEERING = 17    # STEER_FIXED, STEER_AUTOPILOT or STEER_ZIGZAG
+M_HELM = 18        # commanded rudder angle of the fixed and zig-zag modes [rad]
+M_ZIGZAG = 19      # heading deviation that reverses the zig-zag helm [rad]
+M_AB = 20          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
 N_M = M_AB + 9
 
 # foil rows: position from G (x forward, z up) [m], area S C [m^2], lift slope [1/rad], stall and
@@ -63,10 +65,17 @@ F_RUDDER = 6
 F_AR = 7
 F_N = 8
 
-# state: the 3-DOF state then the rudder angle delta [rad] (positive: trailing edge to starboard,
-# turning the ship to starboard, psi decreasing), held within a step like the roll amplitude
+# steering modes: the servo follows a constant command, the PD autopilot, or a zig-zag manoeuvre
+STEER_FIXED = 0.0
+STEER_AUTOPILOT = 1.0
+STEER_ZIGZAG = 2.0
+
+# state: the 3-DOF state, the rudder angle delta [rad] (positive: trailing edge to starboard,
+# turning the ship to starboard, psi decreasing) and the sign of the zig-zag helm, both held
+# within a step like the roll amplitude
 S_RUDDER = N_STATE
-N_STATE6 = N_STATE + 1
+S_HELM = N_STATE + 1
+N_STATE6 = N_STATE + 2
 
 # record status
 OK = 0
@@ -254,25 +263,35 @@ def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, d
 
 
 @njit(cache=True)
-def _rudder_step(m, psi, psi_prev, delta0, dt):
-    """Rudder angle after one step (paper 004): command delta_c = G_a (psi - psi_d)
-    + G_b (psi - psi_0) / dt (eq 30), first-order servo tau delta' + delta = delta_c solved exactly
-    over the step with the command held (eq 32), increment limited by the slew rate (eq 33) and
-    the angle by its maximum (eq 34)."""
-    if m[M_AUTOPILOT] == 0.0:
-        return delta0
-    dc = m[M_GA] * (psi - m[M_PSID]) + m[M_GB] * (psi - psi_prev) / dt
+def _rudder_step(m, psi, psi_prev, delta0, dt, helm):
+    """Rudder angle after one step and the zig-zag helm sign. The command: a constant (fixed mode),
+    the autopilot of paper 004 eq 30, delta_c = G_a (psi - psi_d) + G_b (psi - psi_0) / dt, or the
+    zig-zag helm (+-M_HELM, reversed when the heading passes -+M_ZIGZAG). The servo (eqs 31-34):
+    tau delta' + delta = delta_c solved exactly over the step with the command held (eq 32), the
+    increment limited by the slew rate (eq 33) and the angle by its maximum (eq 34)."""
+    mode = m[M_STEERING]
+    if mode == STEER_AUTOPILOT:
+        dc = m[M_GA] * (psi - m[M_PSID]) + m[M_GB] * (psi - psi_prev) / dt
+    elif mode == STEER_ZIGZAG:
+        # positive helm turns to starboard (psi decreasing) until psi <= -psi_z, then reverses
+        if helm > 0.0 and psi <= -m[M_ZIGZAG]:
+            helm = -1.0
+        elif helm < 0.0 and psi >= m[M_ZIGZAG]:
+            helm = 1.0
+        dc = helm * m[M_HELM]
+    else:
+        dc = m[M_HELM]
     inc = (1.0 - math.exp(-dt / m[M_TAU])) * (dc - delta0)
     lim = m[M_SLEW] * dt
     inc = min(max(inc, -lim), lim)
-    return min(max(delta0 + inc, -m[M_MAX]), m[M_MAX])
+    return min(max(delta0 + inc, -m[M_MAX]), m[M_MAX]), helm
 
 
 @njit(cache=True, nogil=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6,); ``ltab`` (2 nsteps + 1, npoints, 4)
     the wave line table on the half-step grid. The rudder angle moves once per step (``_rudder_step``,
-    linear in time within the step). ``out`` (nsteps + 1, N_STATE6) receives the states. Returns
+    linear in time within the step; its rate is zero in the RK4 stages). ``out`` (nsteps + 1, N_STATE6) receives the states. Returns
     (index of the last step done, status: OK, CAPSIZED (|roll| > phi_cap) or LEFT_TABLE)."""
     ns = N_STATE6
     s = np.empty(ns)
@@ -294,7 +313,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
     for n in range(nsteps):
         j = 2 * n
         d0 = s[S_RUDDER]
-        d1 = _rudder_step(m, s[S_YAW], psi_prev, d0, dt)
+        d1, s[S_HELM] = _rudder_step(m, s[S_YAW], psi_prev, d0, dt, s[S_HELM])
         dm = 0.5 * (d0 + d1)
         psi_prev = s[S_YAW]
         ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, d0, k1, f, wave, work, mq, r)

@@ -121,9 +121,11 @@ class Foil:
 
 @dataclass(frozen=True)
 class Autopilot:
-    """Paper 004 eqs 30-34 (its values as defaults): gains ``ga`` [-] and ``gb`` [s], proportional
-    band and slew rate of the servo [degree, degree/s], maximum rudder angle [degree], desired heading
-    [degree]; ``active`` False holds the rudder at ``rudder_deg``."""
+    """Steering: paper 004 eqs 30-34 (its values as defaults): gains ``ga`` [-] and ``gb`` [s],
+    proportional band and slew rate of the servo [degree, degree/s], maximum rudder angle [degree],
+    desired heading [degree]. ``mode`` "autopilot" (eq 30), "fixed" (the servo turns the rudder to
+    ``rudder_deg`` and holds it: turning circles) or "zigzag" (``rudder_deg`` to starboard, reversed
+    each time the heading deviation reaches ``zigzag_deg``: the 10/10 and 20/20 tests)."""
 
     ga: float = 0.9
     gb: float = 20.0
@@ -131,8 +133,9 @@ class Autopilot:
     slew_rate_deg_s: float = 5.5
     max_deg: float = 35.0
     heading_deg: float = 0.0
-    active: bool = True
+    mode: str = "autopilot"
     rudder_deg: float = 0.0
+    zigzag_deg: float = 10.0
 
 
 @dataclass(frozen=True)
@@ -206,7 +209,12 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     m[K6.M_SLEW] = np.radians(ap.slew_rate_deg_s)
     m[K6.M_MAX] = np.radians(ap.max_deg)
     m[K6.M_PSID] = np.radians(ap.heading_deg)
-    m[K6.M_AUTOPILOT] = 1.0 if ap.active else 0.0
+    modes = {"fixed": K6.STEER_FIXED, "autopilot": K6.STEER_AUTOPILOT, "zigzag": K6.STEER_ZIGZAG}
+    if ap.mode not in modes:
+        raise StabflowError(f"manoeuvring: autopilot.mode {ap.mode!r} is not one of {sorted(modes)}")
+    m[K6.M_STEERING] = modes[ap.mode]
+    m[K6.M_HELM] = np.radians(ap.rudder_deg)
+    m[K6.M_ZIGZAG] = np.radians(ap.zigzag_deg)
     if man.added_mass is None:
         # body-axis added mass of (u, v, r): -(prime added-mass derivatives) 1/2 rho L^n
         ab = np.zeros((3, 3))
@@ -235,7 +243,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     strips = np.column_stack([sp["x"].values[ok] - lcg, q * (sp["draft"].values * cd * sp["dx"].values)[ok]])
     s0 = np.zeros(K6.N_STATE6)
     s0[:K.N_STATE] = initial_state(sec, st)
-    s0[K6.S_RUDDER] = 0.0 if ap.active else np.radians(ap.rudder_deg)
+    s0[K6.S_HELM] = 1.0
     return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der)
 
 
@@ -324,5 +332,6 @@ def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -
         coords={"time": t},
     )
     ds.attrs.update(status=int(status), end_time=float(t[-1]), dt=dt, speed=model.speed,
-                    heading_deg=model.heading_deg)
+                    heading_deg=model.heading_deg, course_deg=float(np.degrees(model.m[K6.M_PSID])),
+                    max_rudder_deg=float(np.degrees(model.m[K6.M_MAX])))
     return annotate(ds)
