@@ -54,7 +54,7 @@ def test_line_table_equals_station_table_on_the_ship_axis():
 
 
 def test_line_table_derivatives_match_finite_differences():
-    """dS/dxi and d2S/dxi2 of the table against central differences of S and dS/dxi (h = 1 mm)."""
+    """S and dS/dxi of the table against central differences of eta and S (h = 1 mm)."""
     rng = np.random.default_rng(4)
     amp, w, ph = rng.uniform(0.1, 1.0, 8), rng.uniform(0.4, 1.6, 8), rng.uniform(-np.pi, np.pi, 8)
     xi = np.array([-3.0, 0.0, 7.5])
@@ -62,8 +62,8 @@ def test_line_table_derivatives_match_finite_differences():
     t = np.array([0.0, 0.5])
     a, b = (line_wave_table(amp, w, ph, xi + s * h, 30.0, 3.0, t) for s in (1, -1))
     mid = line_wave_table(amp, w, ph, xi, 30.0, 3.0, t)
+    np.testing.assert_allclose((a[..., 0] - b[..., 0]) / (2 * h), mid[..., 1], rtol=1e-5, atol=1e-9)
     np.testing.assert_allclose((a[..., 1] - b[..., 1]) / (2 * h), mid[..., 2], rtol=1e-5, atol=1e-9)
-    np.testing.assert_allclose((a[..., 2] - b[..., 2]) / (2 * h), mid[..., 3], rtol=1e-5, atol=1e-9)
 
 
 def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
@@ -72,7 +72,7 @@ def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
     model = six_dof(trawler, heading=30.0)
     rng = np.random.default_rng(5)
     amp, w, ph = rng.uniform(0.1, 0.5, 20), np.linspace(0.6, 2.2, 20), rng.uniform(-np.pi, np.pi, 20)
-    ltab, xi0, h = wave_line(model, (amp, w, ph), 2.0, 0.5, 30.0)
+    ltab, xi0, h, _ = wave_line(model, (amp, w, ph), 0.0, 2, 0.5, 0.0, 60.0)
     m = model.m.copy()
     m[K6.M_XI0], m[K6.M_DXI] = xi0, h
     s = model.s0.copy()
@@ -133,14 +133,21 @@ def test_lift_slope_and_foil_forces():
     assert lift_slope(0.5, 1.0) == pytest.approx(np.pi / 2 * 1.0)            # A_R = 1 < 2: eq 7
     assert lift_slope(2.0, 1.0) == pytest.approx(2 * np.pi * 4.0 / 6.0)      # A_R = 4: eq 8
     rho, area, cla, ar = 1025.0, 2.4, 3.0, 3.3
-    fx, fy = K6._foil_lift(5.0, 0.0, np.radians(5.0), rho, area, cla, np.radians(24), np.radians(12), ar)
+    fx, fy = K6._foil_force(5.0, 0.0, np.radians(5.0), rho, area, cla, np.radians(24), np.radians(12), ar, 0.0)
     cl = cla * np.radians(5.0)
     q = 0.5 * rho * 25.0 * area
     assert fy == pytest.approx(q * cl, rel=1e-12)                     # nose to port: lift to port
     assert fx == pytest.approx(-q * cl**2 / (np.pi * ar), rel=1e-12)  # induced drag astern
-    assert K6._foil_lift(5.0, 0.0, np.radians(30.0), rho, area, cla, np.radians(24), np.radians(12), ar) == (0.0, 0.0)
+    assert K6._foil_force(5.0, 0.0, np.radians(30.0), rho, area, cla, np.radians(24), np.radians(12), ar, 0.0) == (0.0, 0.0)
+    # stalled (30 degree): only the eddy-making normal force 1/2 C_N rho V_n^2 S C (eqs 12, 16),
+    # normal to the chord, to port (and astern) for a positive angle
+    d = np.radians(30.0)
+    fx, fy = K6._foil_force(5.0, 0.0, d, rho, area, cla, np.radians(24), np.radians(12), ar, 1.18)
+    e = 0.5 * rho * 1.18 * (5.0 * np.sin(d)) ** 2 * area
+    assert fy == pytest.approx(e * np.cos(d), rel=1e-12)
+    assert fx == pytest.approx(-e * np.sin(d), rel=1e-12)
     # the foil moving to port (v > 0) at zero rudder is pushed to starboard: it damps sway
-    assert K6._foil_lift(5.0, 0.5, 0.0, rho, area, cla, np.radians(24), np.radians(12), ar)[1] < 0.0
+    assert K6._foil_force(5.0, 0.5, 0.0, rho, area, cla, np.radians(24), np.radians(12), ar, 0.0)[1] < 0.0
 
 
 def test_crossflow_drag_coefficient_follows_hoerner():
@@ -279,3 +286,26 @@ def test_record_events():
     assert ev["capsized"] == 0 and ev["capsize_time"] == -1.0
     ev = record_events(ds, broach_deg=30.0, celerity=c, surf_tolerance=0.05, surf_min_s=40.0, heading_deg=0.0)
     assert ev["surf_riding"] == 0 and ev["surf_riding_time"] == -1.0
+
+
+def test_chunked_tables_continue_the_record(trawler):
+    """Irregular waves tabulated in 5-s chunks (grids re-centred on the ship, the autopilot's last
+    yaw carried over) give the record of 60-s chunks within the interpolation error."""
+    model = six_dof(trawler, heading=30.0)
+    rng = np.random.default_rng(8)
+    comps = (rng.uniform(0.01, 0.06, 30), np.linspace(0.5, 2.0, 30), rng.uniform(-np.pi, np.pi, 30))
+    a = simulate_six_dof(model, comps, 60.0, 0.05, chunk_s=5.0)
+    b = simulate_six_dof(model, comps, 60.0, 0.05, chunk_s=60.0)
+    assert a.attrs["status"] == b.attrs["status"] == K6.OK
+    for v, tol in (("roll", 0.05), ("yaw", 0.05), ("heave", 0.005), ("sway", 0.01)):
+        scale = float(np.max(np.abs(b[v])))
+        assert float(np.max(np.abs(a[v] - b[v]))) < tol * scale + 1e-9, v
+
+
+def test_steady_turn_heels_outward(trawler):
+    """In a steady starboard turn the centrifugal load (at G, above the hull's side force) heels the
+    ship to port (negative roll), after a short inward heel from the rudder force."""
+    model = six_dof(trawler, autopilot=Autopilot(mode="fixed", rudder_deg=10.0))
+    ds = simulate_six_dof(model, ([], [], []), 60.0, 0.05)
+    assert float(ds["yaw_rate"][-1]) < 0.0
+    assert float(ds["roll"][-1]) < -1.0

@@ -5,12 +5,12 @@ adds what a free course needs:
 
 * the incident wave at the stations' *instantaneous* positions: long-crested waves depend on the
   horizontal position only through xi = X cos(beta) + Y sin(beta), so one table on a line of xi
-  points (``waves.synthesis.line_wave_table``: eta, S, dS/dxi, d2S/dxi2 on the half-step grid) is
+  points (``waves.synthesis.line_wave_table``: eta, S, dS/dxi on the half-step grid) is
   interpolated at each station by cubic Hermite polynomials (eta with its slope S, S with dS/dxi);
   the wave heading relative to the ship is beta - psi;
 * calm-water resistance and a constant thrust, linear hull manoeuvring forces, foils (rudder,
-  skeg) as lifting surfaces (paper 004 eqs 1-11), the horizontal added mass in body axes (with its
-  Munk moment), and the PD autopilot with the first-order rudder servo (paper 004 eqs 30-34).
+  skeg) as lifting surfaces with their eddy-making normal force (paper 004 eqs 1-16), the inertia
+  of the horizontal added mass in body axes, and the PD autopilot with the first-order rudder servo (paper 004 eqs 30-34).
 
 Parameters: ``p`` as in :mod:`._kernels` (its cos/sin beta are the wave heading relative to the
 mean course), ``m`` (``M_*`` positions below), ``foils`` (nf, F_N) rows and the cross-flow drag
@@ -49,12 +49,13 @@ M_PSID = 16        # desired heading [rad]
 M_STEERING = 17    # STEER_FIXED, STEER_AUTOPILOT or STEER_ZIGZAG
 M_HELM = 18        # commanded rudder angle of the fixed and zig-zag modes [rad]
 M_ZIGZAG = 19      # heading deviation that reverses the zig-zag helm [rad]
-M_AB = 20          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
+M_WRAP = 20        # > 0: the line table is periodic with this many intervals (one regular wave)
+M_AB = 21          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
 N_M = M_AB + 9
 
 # foil rows: position from G (x forward, z up) [m], area S C [m^2], lift slope [1/rad], stall and
 # trailing-edge stall angles [rad] (paper 004 eq 9), 1 for the rudder (turns with delta), effective
-# aspect ratio 2 S / C (eq 6)
+# aspect ratio 2 S / C (eq 6), coefficient of normal pressure C_N (eq 14)
 F_X = 0
 F_Z = 1
 F_AREA = 2
@@ -63,7 +64,8 @@ F_STALL = 4
 F_TRAIL = 5
 F_RUDDER = 6
 F_AR = 7
-F_N = 8
+F_CN = 8
+F_N = 9
 
 # steering modes: the servo follows a constant command, the PD autopilot, or a zig-zag manoeuvre
 STEER_FIXED = 0.0
@@ -71,11 +73,12 @@ STEER_AUTOPILOT = 1.0
 STEER_ZIGZAG = 2.0
 
 # state: the 3-DOF state, the rudder angle delta [rad] (positive: trailing edge to starboard,
-# turning the ship to starboard, psi decreasing) and the sign of the zig-zag helm, both held
-# within a step like the roll amplitude
+# turning the ship to starboard, psi decreasing), the sign of the zig-zag helm and the yaw at the
+# previous step (eq 30's derivative), held within a step like the roll amplitude
 S_RUDDER = N_STATE
 S_HELM = N_STATE + 1
-N_STATE6 = N_STATE + 2
+S_PSI_PREV = N_STATE + 2
+N_STATE6 = N_STATE + 3
 
 # record status
 OK = 0
@@ -95,8 +98,9 @@ def _hermite(y0, d0, y1, d1, t, h):
 @njit(cache=True)
 def _station_wave(xs, p, m, s, line, wave):
     """Fill ``wave`` (nst, 2) with (eta, S) at the stations' instantaneous positions from the line
-    table ``line`` (npoints, 4) at one time. Returns False if a station lies outside the table (its
-    value is then taken at the nearest end)."""
+    table ``line`` (npoints, 3) at one time. Returns False if a station lies outside the table (its
+    value is then taken at the nearest end); a periodic table (``M_WRAP`` intervals, one regular
+    wave, last point = first) is read modulo its period and never left."""
     xg = p[P_XG]
     cb = p[P_COS_BETA]
     sb = p[P_SIN_BETA]
@@ -109,20 +113,21 @@ def _station_wave(xs, p, m, s, line, wave):
     xi0 = m[M_XI0]
     h = m[M_DXI]
     npt = line.shape[0]
+    wrap = m[M_WRAP]
     inside = True
     for i in range(xs.shape[0]):
         d = xs[i] - xg
         xi = (x0 + cy * d) * cb + (y0 + sy * d) * sb
         u = (xi - xi0) / h
-        k = int(math.floor(u))
-        if k < 0:
-            k = 0
+        if wrap > 0.0:
+            u -= wrap * math.floor(u / wrap)
+        if u < 0.0:
             u = 0.0
             inside = False
-        elif k > npt - 2:
-            k = npt - 2
+        elif u > npt - 1.0:
             u = npt - 1.0
             inside = False
+        k = min(int(u), npt - 2)
         t = u - k
         wave[i, 0] = _hermite(line[k, 0], line[k, 1], line[k + 1, 0], line[k + 1, 1], t, h)
         wave[i, 1] = _hermite(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
@@ -130,14 +135,17 @@ def _station_wave(xs, p, m, s, line, wave):
 
 
 @njit(cache=True, inline="always")
-def _foil_lift(uf, vf, delta, rho, area, cla, stall, trail, ar):
+def _foil_force(uf, vf, delta, rho, area, cla, stall, trail, ar, cn):
     """Horizontal force (Fx, Fy) [N] of a vertical foil moving at (uf, vf) [m/s] through still water,
-    chord turned by ``delta`` (nose to port for delta > 0): paper 004 eqs 5, 9, 11 with the flow
-    in the horizontal plane (span vertical). The angle of attack is measured from the upstream
-    direction to the chord; lift is normal to the flow, C_L = C_La alpha below the stall angle,
-    C_La (alpha -+ pi) within the trailing-edge stall angle of reversed flow, else zero. The
-    induced drag of the same lifting line, C_Di = C_L^2 / (pi A_R) (Prandtl), acts along the flow:
-    without it a lifting rudder in a turn would propel the ship."""
+    chord turned by ``delta`` (nose to port for delta > 0), in the horizontal plane (span vertical).
+
+    Lift (paper 004 eqs 5, 9, 11): the angle of attack is measured from the upstream direction to
+    the chord; lift is normal to the flow, C_L = C_La alpha below the stall angle, C_La (alpha -+ pi)
+    within the trailing-edge stall angle of reversed flow, else zero; with the induced drag of the
+    same lifting line, C_Di = C_L^2 / (pi A_R) (Prandtl), along the flow (without it a lifting
+    rudder in a turn would propel the ship). Eddy making (eqs 12, 16): the flat-plate normal force
+    1/2 C_N rho V_n |V_n| S C along the chord normal, V_n the flow's normal component (C_A = C_K =
+    C_S = 1 at full-scale Reynolds numbers, eq 15): the force a stalled rudder still gives."""
     v2 = uf * uf + vf * vf
     if v2 <= 1e-12:
         return 0.0, 0.0
@@ -155,8 +163,11 @@ def _foil_lift(uf, vf, delta, rho, area, cla, stall, trail, ar):
         cl = 0.0
     q = 0.5 * rho * v2 * area
     cd = cl * cl / (math.pi * ar)
+    # normal n = c x e_z = (cy, -cx); the water moves at (-uf, -vf) relative to the foil
+    vn = -(uf * cy - vf * cx)
+    e = 0.5 * rho * cn * vn * abs(vn) * area
     # lift along (-dy, dx), drag against the foil's motion (-dx, -dy)
-    return q * (-dy * cl - dx * cd), q * (dx * cl - dy * cd)
+    return q * (-dy * cl - dx * cd) + e * cy, q * (dx * cl - dy * cd) - e * cx
 
 
 @njit(cache=True)
@@ -178,9 +189,15 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f):
     re = abs(u) * m[M_LNU]
     cf = 0.075 / (math.log10(max(re, 1e3)) - 2.0) ** 2  # ITTC 1957 model-ship correlation line
     fx = m[M_THRUST] - m[M_RES] * cf * u * abs(u)
-    # linear hull manoeuvring forces (about midships, x = 0) scaled by the surge velocity
-    fy = u * (m[M_YV] * v + m[M_YR] * r)
-    nz = u * (m[M_NV] * v + m[M_NR] * r) - p[P_XG] * fy
+    # linear hull manoeuvring forces about midships (x = 0), with midships' sway velocity
+    # v - x_G r, scaled by the surge velocity
+    vm = v - p[P_XG] * r
+    fy = u * (m[M_YV] * vm + m[M_YR] * r)
+    nz = u * (m[M_NV] * vm + m[M_NR] * r) - p[P_XG] * fy
+    # the quadratic surge term of the added mass (-C_A nu, Fossen), which the linear derivatives
+    # cannot hold: (A22 - A11) v r + A26 r^2 beyond the A11 u' - A11 v r of the inertia term
+    ab = m[M_AB:M_AB + 9]
+    fx += (ab[4] - ab[0]) * v * r + 0.5 * (ab[5] + ab[7]) * r * r
     # cross-flow drag: each strip's lateral velocity v + r x meets the drag of a 2-D section
     for i in range(strips.shape[0]):
         vl = v + r * strips[i, 0]
@@ -193,8 +210,8 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f):
         zf = foils[j, F_Z]
         dl = delta if foils[j, F_RUDDER] != 0.0 else 0.0
         # velocity of the foil centre: (u, v + r x_f - p z_f)
-        lx, ly = _foil_lift(u, v + r * xf - pr * zf, dl, rho, foils[j, F_AREA], foils[j, F_CLA],
-                            foils[j, F_STALL], foils[j, F_TRAIL], foils[j, F_AR])
+        lx, ly = _foil_force(u, v + r * xf - pr * zf, dl, rho, foils[j, F_AREA], foils[j, F_CLA],
+                             foils[j, F_STALL], foils[j, F_TRAIL], foils[j, F_AR], foils[j, F_CN])
         fx += lx
         fy += ly
         nz += xf * ly
@@ -211,8 +228,9 @@ def _horizontal_added_mass(m, s, mq, r):
     system of (x, y, psi): with u = cos psi (U + x') + sin psi y', v = -sin psi (U + x') + cos psi y',
     r = psi', nu' = J q'' + r (v, -u, 0) (J the rotation to the heading frame), so
     J^T A_b J q'' = Q - J^T A_b r (v, -u, 0). The velocity-dependent ideal-fluid forces (added-mass
-    Coriolis terms, Munk moment) are part of the hull derivatives (measured on rotating arms and
-    planar-motion mechanisms, Clarke et al. 1983) and are not added again."""
+    Coriolis terms, Munk moment) linear in the velocities are part of the hull derivatives (measured
+    on rotating arms and planar-motion mechanisms, Clarke et al. 1983) and are not added again; the
+    quadratic surge term is added with the loads (``_manoeuvring_loads``)."""
     psi = s[S_YAW]
     c = math.cos(psi)
     sn = math.sin(psi)
@@ -241,7 +259,7 @@ def _horizontal_added_mass(m, s, mq, r):
 
 @njit(cache=True)
 def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, ds, f, wave, work, mq, r):
-    """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 4) at this time and
+    """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 3) at this time and
     the rudder angle ``delta``; the FK + HS loads see the wave heading relative to the ship,
     beta - psi. Returns False if a station left the wave table."""
     inside = _station_wave(xs, p, m, s, line, wave)
@@ -271,7 +289,9 @@ def _rudder_step(m, psi, psi_prev, delta0, dt, helm):
     increment limited by the slew rate (eq 33) and the angle by its maximum (eq 34)."""
     mode = m[M_STEERING]
     if mode == STEER_AUTOPILOT:
-        dc = m[M_GA] * (psi - m[M_PSID]) + m[M_GB] * (psi - psi_prev) / dt
+        err = psi - m[M_PSID]
+        err -= 2.0 * math.pi * math.floor((err + math.pi) / (2.0 * math.pi))  # to [-pi, pi)
+        dc = m[M_GA] * err + m[M_GB] * (psi - psi_prev) / dt
     elif mode == STEER_ZIGZAG:
         # positive helm turns to starboard (psi decreasing) until psi <= -psi_z, then reverses
         if helm > 0.0 and psi <= -m[M_ZIGZAG]:
@@ -289,8 +309,8 @@ def _rudder_step(m, psi, psi_prev, delta0, dt, helm):
 
 @njit(cache=True, nogil=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
-    """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6,); ``ltab`` (2 nsteps + 1, npoints, 4)
-    the wave line table on the half-step grid. The rudder angle moves once per step (``_rudder_step``,
+    """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6,); ``ltab`` (2 nsteps + 1, npoints, 3)
+    the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle moves once per step (``_rudder_step``,
     linear in time within the step; its rate is zero in the RK4 stages). ``out`` (nsteps + 1, N_STATE6) receives the states. Returns
     (index of the last step done, status: OK, CAPSIZED (|roll| > phi_cap) or LEFT_TABLE)."""
     ns = N_STATE6
@@ -309,13 +329,12 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
     for q in range(ns):
         s[q] = s0[q]
         out[0, q] = s0[q]
-    psi_prev = s[S_YAW]
     for n in range(nsteps):
         j = 2 * n
         d0 = s[S_RUDDER]
-        d1, s[S_HELM] = _rudder_step(m, s[S_YAW], psi_prev, d0, dt, s[S_HELM])
+        d1, s[S_HELM] = _rudder_step(m, s[S_YAW], s[S_PSI_PREV], d0, dt, s[S_HELM])
         dm = 0.5 * (d0 + d1)
-        psi_prev = s[S_YAW]
+        s[S_PSI_PREV] = s[S_YAW]
         ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, d0, k1, f, wave, work, mq, r)
         for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k1[q]

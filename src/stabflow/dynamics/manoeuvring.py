@@ -97,6 +97,17 @@ def ittc57_friction(reynolds) -> np.ndarray:
     return 0.075 / (np.log10(np.asarray(reynolds, float)) - 2.0) ** 2
 
 
+def normal_pressure_coefficient(span: float, chord: float) -> float:
+    """Kato's coefficient of normal pressure C_N of a flat plate of ``span`` and ``chord`` (paper 004
+    eq 14): 1.98 exp(-11 s/C) for s/C < 0.07, 1.98 exp(-11 C/s) for C/s < 0.07, else 1.18."""
+    r = span / chord
+    if r < 0.07:
+        return float(1.98 * np.exp(-11.0 * r))
+    if 1.0 / r < 0.07:
+        return float(1.98 * np.exp(-11.0 / r))
+    return 1.18
+
+
 def lift_slope(span: float, chord: float) -> float:
     """Lift-curve slope C_La [1/rad] of a foil (paper 004 eqs 6-8): effective aspect ratio
     A_R = 2 S / C (groundboarded), C_La = pi A_R / 2 if A_R < 2 else 2 pi A_R / (A_R + 2)."""
@@ -222,6 +233,9 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
         ab[1, 2] = -q * L**4 * der["yrdot"]
         ab[2, 1] = -q * L**4 * der["nvdot"]
         ab[2, 2] = -q * L**5 * der["nrdot"]
+        # Clarke's derivatives are about midships: velocities there are (u, v - x_G r, r)
+        H = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, -lcg], [0.0, 0.0, 1.0]])
+        ab = H.T @ ab @ H
         src = (f"Clarke et al. (1983) regression at B/L {B / L:.3f}, B/T {B / T:.2f}, C_B {hp.cb:.3f}: give the added "
                "mass (e.g. Capytaine's zero-frequency limit, stabflow.dynamics.hydro.manoeuvring_added_mass)")
     else:
@@ -237,44 +251,47 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     foils = np.zeros((len(man.foils), K6.F_N))
     for j, f in enumerate(man.foils):
         foils[j] = (f.x - lcg, f.z - kg, f.span * f.chord, lift_slope(f.span, f.chord), np.radians(f.stall_deg),
-                    np.radians(f.trail_deg), 1.0 if f.rudder else 0.0, 2.0 * f.span / f.chord)
+                    np.radians(f.trail_deg), 1.0 if f.rudder else 0.0, 2.0 * f.span / f.chord,
+                    normal_pressure_coefficient(f.span, f.chord))
     ok = sp["valid"].values
     cd = crossflow_drag_coefficient(sp["breadth"].values, sp["draft"].values)
     strips = np.column_stack([sp["x"].values[ok] - lcg, q * (sp["draft"].values * cd * sp["dx"].values)[ok]])
     s0 = np.zeros(K6.N_STATE6)
     s0[:K.N_STATE] = initial_state(sec, st)
     s0[K6.S_HELM] = 1.0
+    s0[K6.S_PSI_PREV] = s0[K.S_YAW]
     return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der)
 
 
-def wave_line(model: SixDof, waves, duration: float, dt: float, margin: float, points_per_wavelength: float = 8.0):
-    """Line table (2 nsteps + 1, npoints, 4) of the wave for a record and its grid (xi0, dxi) [m].
+def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,
+              points_per_wavelength: float = 8.0):
+    """Line table (2 nsteps + 1, npoints, 3) of (eta, S, dS/dxi) from time ``t0`` [s] on the
+    half-step grid, its first point and spacing (xi0, dxi) [m], and the number of intervals of a
+    periodic table (0: not periodic).
 
-    The points cover the ship's stations at any heading plus ``margin`` [m] of surge and sway
-    drift either side, spaced at the shortest component's wavelength / ``points_per_wavelength``
-    (cubic Hermite error about (k h)^4 / 384, 0.1 % at 8 points)."""
+    The points cover ``centre`` +- ``reach`` [m] of the propagation coordinate, spaced at the
+    shortest component's wavelength / ``points_per_wavelength`` (cubic Hermite error about
+    (k h)^4 / 384, 0.1 % at 8 points). A single regular wave is tabulated over one wavelength at 32
+    points and calm water as zeros, both read periodically (any drift)."""
     amp, omega, phase = (np.asarray(a, float) for a in waves)
-    nsteps = int(round(duration / dt))
-    t_half = np.arange(2 * nsteps + 1) * 0.5 * dt
-    xg = float(model.p[K.P_XG])
-    reach = float(np.max(np.abs(model.sec.x - xg))) + margin
-    centre = xg * np.cos(np.radians(model.heading_deg))
-    if len(amp):
-        kmax = float(np.max(omega)) ** 2 / float(model.p[K.P_G])
-        h = 2 * np.pi / kmax / points_per_wavelength
-    else:
-        h = reach
+    t_half = t0 + np.arange(2 * nsteps + 1) * 0.5 * dt
+    if len(amp) == 0:
+        return np.zeros((len(t_half), 2, 3)), 0.0, 1.0, 1
+    if len(amp) == 1:
+        lam = 2 * np.pi * float(model.p[K.P_G]) / float(omega[0]) ** 2
+        xi = np.arange(33) * lam / 32
+        tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half)
+        return np.ascontiguousarray(tab), 0.0, float(xi[1]), 32
+    kmax = float(np.max(omega)) ** 2 / float(model.p[K.P_G])
+    h = 2 * np.pi / kmax / points_per_wavelength
     n = int(np.ceil(2 * reach / h)) + 1
     xi = centre - reach + h * np.arange(n)
-    if len(amp):
-        tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half)
-    else:
-        tab = np.zeros((len(t_half), n, 4))
-    return np.ascontiguousarray(tab), float(xi[0]), float(h)
+    tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half)
+    return np.ascontiguousarray(tab), float(xi[0]), float(h), 0
 
 
-def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, margin: float | None = None,
-                     phi_cap_deg: float = 90.0, s0=None, points_per_wavelength: float = 8.0) -> xr.Dataset:
+def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg: float = 90.0, s0=None,
+                     points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 60.0) -> xr.Dataset:
     """Simulate one 6-DOF record from the calm-water rest state (or ``s0``).
 
     Parameters
@@ -283,31 +300,52 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, margin
         (amp [m], omega [rad/s], phase [rad]) of the wave components (empty: calm water).
     duration, dt : float
         Record length and RK4 step [s].
-    margin : float, optional
-        Surge/sway drift [m] the wave table covers beyond the hull (default: one ship length plus
-        the distance the ship covers in the record at 20 % of its speed).
     phi_cap_deg : float
         Roll angle that ends the record as a capsize [degree].
+    ramp_s : float
+        The wave grows from zero over this time [s] (smoothstep), so that the ship enters it on the
+        motion that continues the calm-water one (0: the full wave from the start).
+    chunk_s : float
+        Irregular waves are tabulated in chunks of this length [s] on a line of points centred on
+        the ship at the chunk's start and reaching the hull plus the drift at twice the commanded
+        speed (plus 2 m/s); a chunk the ship leaves is tabulated again twice as wide.
 
     Returns
     -------
     xarray.Dataset along ``time`` [s]: position of G in the frame moving with the commanded speed
     (``surge``, ``sway`` [m]), ``heave`` of G [m], ``roll``, ``pitch``, ``yaw`` and ``rudder``
     [degree], body surge and sway velocities ``u``, ``v`` [m/s], yaw rate [degree/s]; attributes
-    ``status`` (0 ok, 1 capsized, 2 left the wave table) and ``end_time`` [s].
+    ``status`` (0 ok, 1 capsized).
     """
-    if margin is None:
-        margin = model.length + 0.2 * model.speed * duration
-    ltab, xi0, h = wave_line(model, waves, duration, dt, margin, points_per_wavelength)
-    m = model.m.copy()
-    m[K6.M_XI0] = xi0
-    m[K6.M_DXI] = h
     nsteps = int(round(duration / dt))
     out = np.empty((nsteps + 1, K6.N_STATE6))
-    start = model.s0 if s0 is None else np.asarray(s0, float)
-    done, status = K6._simulate6(*kernel_args(model.sec, model.tables), model.p, m, model.foils, model.strips, ltab, dt, nsteps,
-                                 start, np.radians(phi_cap_deg), out)
-    return six_dof_dataset(model, out[:done + 1], dt, status)
+    out[0] = model.s0 if s0 is None else np.asarray(s0, float)
+    per = max(1, int(round(chunk_s / dt)))
+    xg = float(model.p[K.P_XG])
+    hull = float(np.max(np.abs(model.sec.x - xg)))
+    cb, sb = np.cos(np.radians(model.heading_deg)), np.sin(np.radians(model.heading_deg))
+    args = kernel_args(model.sec, model.tables)
+    n0, status = 0, K6.OK
+    while n0 < nsteps and status == K6.OK:
+        n1 = min(nsteps, n0 + per)
+        s = out[n0]
+        centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb
+        reach = hull + (2.0 * model.speed + 2.0) * (n1 - n0) * dt
+        while True:
+            ltab, xi0, h, wrap = wave_line(model, waves, n0 * dt, n1 - n0, dt, centre, reach, points_per_wavelength)
+            if ramp_s > 0:
+                r = np.clip((n0 * dt + np.arange(len(ltab)) * 0.5 * dt) / ramp_s, 0.0, 1.0)
+                ltab *= (r * r * (3.0 - 2.0 * r))[:, None, None]
+            m = model.m.copy()
+            m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = xi0, h, wrap
+            done, status = K6._simulate6(*args, model.p, m, model.foils, model.strips, ltab, dt, n1 - n0, s,
+                                         np.radians(phi_cap_deg), out[n0:n1 + 1])
+            if status != K6.LEFT_TABLE:
+                break
+            reach *= 2.0
+            status = K6.OK
+        n0 += done
+    return six_dof_dataset(model, out[:n0 + 1], dt, status)
 
 
 def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -> xr.Dataset:

@@ -75,7 +75,7 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
 
 
 def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.float64) -> np.ndarray:
-    """(nt, npoints, 4) table of (eta, S, dS/dxi, d2S/dxi2) at the points ``xi`` [m] of the
+    """(nt, npoints, 3) table of (eta, S, dS/dxi) at the points ``xi`` [m] of the
     propagation coordinate xi = X cos(beta) + Y sin(beta) of the frame moving with ``speed`` [m/s]
     along x, at equally spaced ``times``.
 
@@ -83,7 +83,7 @@ def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.f
     anywhere in the horizontal plane (6-DOF: the stations move with surge, sway and yaw); the kernel
     interpolates eta with its slope S and S with dS/dxi by cubic Hermite polynomials. A station at
     X = x_i on the ship's axis (Y = 0) has xi = x_i cos(beta): the values equal
-    :func:`station_wave_table`'s there (dS/dxi = -sum a k^2 cos psi, d2S/dxi2 = sum a k^3 sin psi).
+    :func:`station_wave_table`'s there (dS/dxi = -sum a k^2 cos psi).
     """
     amp = np.asarray(amp, dtype=float)
     omega = np.asarray(omega, float)
@@ -93,8 +93,8 @@ def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.f
     we = omega - k * speed * np.cos(np.radians(heading_deg))
     P = k[None, :] * xi[:, None] + phase[None, :]
     cP, sP = np.cos(P), np.sin(P)
-    ak, ak2, ak3 = amp * k, amp * k**2, amp * k**3
-    cols = [(amp * cP, amp * sP), (-ak * sP, ak * cP), (-ak2 * cP, -ak2 * sP), (ak3 * sP, -ak3 * cP)]
+    ak, ak2 = amp * k, amp * k**2
+    cols = [(amp * cP, amp * sP), (-ak * sP, ak * cP), (-ak2 * cP, -ak2 * sP)]
     return _time_series_table(we, times, cols, dtype)
 
 

@@ -1,0 +1,125 @@
+"""Surf-riding threshold in regular following waves (issue 17): Melnikov's method on the surge
+equation alone against bisection on the commanded speed with the 6-DOF model.
+
+Surge equation. With x the position of G relative to a wave crest travelling at the celerity c,
+the ship speed is u = c + x' and
+
+    (m + A11) x'' = T - R(c + x') - f sin(k x + e),
+
+T the constant thrust (the calm-water resistance at the commanded speed U, :mod:`.manoeuvring`),
+R(u) the resistance of the 6-DOF model, f and e the amplitude and phase of the Froude-Krylov surge
+force on the hull at its calm-water equilibrium (first harmonic over the crest position).
+
+Melnikov's method. Without thrust and resistance the equation is a pendulum; its heteroclinic
+orbits join the saddles one wavelength apart, with x'_0(x) = -2 sqrt(f / (M k)) |cos((k x + e) / 2)|
+on the lower branch (the wave overtaking the ship), M = m + A11. Taking T - R as the perturbation,
+the Melnikov integral along that orbit is int (T - R(c + x'_0)) x'_0 dt = int_0^lambda (T - R) dx,
+and the heteroclinic bifurcation (beyond which periodic surging no longer exists and the ship
+surf-rides from any initial condition) is where it vanishes:
+
+    R(U_cr) = T = (1 / lambda) int_0^lambda R(c - 2 sqrt(f / (M k)) |cos(k x / 2)|) dx.
+
+The same construction underlies the surf-riding level-2 vulnerability criterion of the IMO
+second-generation criteria (Melnikov's method); its circular's text and tables could not be read
+here, so this derivation uses the model's own R(u) and f instead of the circular's.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+from scipy import integrate, optimize
+
+from stabflow.constants import G
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics import _kernels_6dof as K6
+from stabflow.dynamics.manoeuvring import SixDof, simulate_six_dof
+from stabflow.dynamics.tables import kernel_args
+
+
+def resistance(model: SixDof, u):
+    """Calm-water resistance R(u) [N] of the 6-DOF model (ITTC-57 line with the form factor)."""
+    u = np.asarray(u, float)
+    re = np.maximum(np.abs(u) * model.m[K6.M_LNU], 1e3)
+    cf = 0.075 / (np.log10(re) - 2.0) ** 2
+    return model.m[K6.M_RES] * cf * u * np.abs(u)
+
+
+def surge_force(model: SixDof, wavelength: float, height: float, n: int = 72) -> tuple[float, float]:
+    """Amplitude f [N] and phase e [rad] of the Froude-Krylov surge force in a regular following wave
+    on the hull held at its calm-water equilibrium, F_x = -f sin(k x + e) with x the crest's
+    position aft of G's station (first harmonic of n crest positions)."""
+    k = 2 * np.pi / wavelength
+    a = 0.5 * height
+    p = model.p.copy()
+    p[K.P_COS_BETA], p[K.P_SIN_BETA] = 1.0, 0.0
+    xs = model.sec.x
+    s = model.s0
+    fx = np.empty(n)
+    xc = np.arange(n) * wavelength / n
+    work = np.empty((len(xs), 5))
+    out = np.empty(6)
+    for j, x0 in enumerate(xc):
+        # crest at x = -x0 relative to the frame origin: eta = a cos(k (x + x0))
+        ph = k * (xs + x0)
+        wave = np.column_stack([a * np.cos(ph), -a * k * np.sin(ph)])
+        K._loads(*kernel_args(model.sec, model.tables), p, wave, s, out, work)
+        fx[j] = out[0]
+    # F = -f sin(k x0 + e) = -f cos(e) sin(k x0) - f sin(e) cos(k x0)
+    sn = 2.0 * np.mean(fx * np.sin(k * xc))
+    cs = 2.0 * np.mean(fx * np.cos(k * xc))
+    f = float(np.hypot(sn, cs))
+    return f, float(np.arctan2(-cs, -sn))
+
+
+def melnikov_threshold(model: SixDof, wavelength: float, height: float) -> float:
+    """Commanded speed U_cr [m/s] at the heteroclinic bifurcation of the surge equation (module
+    docstring): R(U_cr) = mean of R(c + x'_0(x)) over one wavelength."""
+    k = 2 * np.pi / wavelength
+    c = np.sqrt(G / k)
+    f, _ = surge_force(model, wavelength, height)
+    mass = float(model.p[K.P_MASS]) + float(model.m[K6.M_AB])
+    amp = 2.0 * np.sqrt(f / (mass * k))
+    mean_r = integrate.quad(lambda x: float(resistance(model, c - amp * abs(np.cos(0.5 * k * x)))), 0.0,
+                            wavelength, limit=200)[0] / wavelength
+    return float(optimize.brentq(lambda u: float(resistance(model, u)) - mean_r, 1e-3, c))
+
+
+def surf_rides(model: SixDof, wavelength: float, height: float, speed: float, *, encounters: float = 40.0,
+               dt: float = 0.05) -> bool:
+    """True if the 6-DOF model at commanded ``speed`` [m/s] is captured by the regular following
+    wave: the wave grows from zero over ``encounters`` encounter periods at the commanded speed (so
+    the ship enters it on the periodic surging motion, not inside the surf-riding basin by the
+    chance of its starting phase), then stays for as many; captured when over that second part
+    the waves overtake the ship by less than half a wavelength."""
+    k = 2 * np.pi / wavelength
+    w = np.sqrt(G * k)
+    c = w / k
+    m = replace(model, speed=float(speed), m=model.m.copy())
+    m.m[K6.M_SPEED] = speed
+    m.m[K6.M_THRUST] = float(resistance(m, speed))
+    te = wavelength / max(c - speed, 1e-3 * c)
+    ramp = encounters * te
+    ds = simulate_six_dof(m, (np.array([0.5 * height]), np.array([w]), np.array([0.0])), 2.0 * ramp, dt, ramp_s=ramp)
+    if ds.attrs["status"] != K6.OK:
+        return False
+    t = ds["time"].values
+    rel = ds["surge"].values + (speed - c) * t  # G's position relative to the wave
+    half = np.searchsorted(t, ramp)
+    return bool(rel[-1] - rel[half] > -0.5 * wavelength)
+
+
+def simulated_threshold(model: SixDof, wavelength: float, height: float, lo: float, hi: float,
+                        tol: float = 0.01, **kw) -> float:
+    """Bisection on the commanded speed [m/s] between ``lo`` (periodic surging) and ``hi`` (surf-riding
+    from every start) to ``tol`` [m/s]."""
+    if surf_rides(model, wavelength, height, lo, **kw) or not surf_rides(model, wavelength, height, hi, **kw):
+        raise ValueError(f"surf-riding threshold not bracketed by {lo:g} and {hi:g} m/s")
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        if surf_rides(model, wavelength, height, mid, **kw):
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)
