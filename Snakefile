@@ -1,5 +1,5 @@
 # stabflow: ship dynamic stability in irregular seas.
-# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> extremes / splittime (+ the 1-DOF capsize case) -> validation -> report.
+# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> extremes / splittime (+ the 1-DOF capsize case, the 6-DOF broaching scenario) -> validation -> report.
 
 
 configfile: "config/config.yaml"
@@ -15,6 +15,7 @@ include: "workflow/rules/ensemble.smk"
 include: "workflow/rules/extremes.smk"
 include: "workflow/rules/splittime.smk"
 include: "workflow/rules/capsize_1dof.smk"
+include: "workflow/rules/broaching.smk"
 include: "workflow/rules/validate.smk"
 include: "workflow/rules/report.smk"
 

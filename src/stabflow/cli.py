@@ -119,6 +119,18 @@ class Command:
     run: Callable
 
 
+def _broaching(a):
+    cfg = _pipeline(a)
+    if "broaching" not in cfg:
+        raise StabflowError(f"{a.config}: broaching: the section is missing: nothing to run")
+    figs = None
+    if a.figures:
+        s = cfg["broaching"]["ship"]
+        names = [f"motions_{k}" for k in cfg["broaching"]["loadings"]] + ["strip", "manoeuvres"]
+        figs = {n: str(Path(a.figures) / f"{s}_{n}.png") for n in names}
+    return steps.run_broaching(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs)
+
+
 COMMANDS: dict[str, Command] = {
     "hull": Command("cut stations and Bonjean tables", (SHIP, OUT, FIGURE),
                     lambda a: steps.run_hull(a.ship, a.output, a.figure)),
@@ -176,6 +188,11 @@ COMMANDS: dict[str, Command] = {
                              FIGURE),
                             lambda a: steps.run_capsize_1dof(_pipeline(a)["capsize_1dof"], a.output, a.validation,
                                                              a.figure, a.threads)),
+    "broaching": Command("paper 004's stern-quartering cases (6-DOF), calm-water manoeuvres, surf-riding thresholds",
+                         (CONFIG, OUT, (("--validation",), {"required": True, "help": "validation rows NetCDF"}),
+                          (("--figures",), {"help": "folder for the figures (<ship>_motions_<loading>.png, "
+                                                    "<ship>_strip.png, <ship>_manoeuvres.png)"})),
+                         _broaching),
     "report": Command("build the HTML report from a results folder",
                       (CONFIG, (("--results",), {"default": "results"}), (("--source",), {"default": "report"}),
                        (("-o", "--output"), {"default": "results/report/html/index.html"})),

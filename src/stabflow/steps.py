@@ -402,3 +402,33 @@ def run_capsize_1dof(cfg: dict, out_nc, validation_nc, figure=None, threads: int
     write_netcdf(ds, out_nc)
     write_netcdf(rows, validation_nc)
     return ds
+
+
+def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict | None = None,
+                  progress: bool = True) -> xr.Dataset:
+    """broaching step (issue 17): paper 004's stern-quartering cases with the 6-DOF model, calm-water
+    manoeuvres, and the surf-riding threshold checks → NetCDF, validation rows, figures."""
+    from pathlib import Path
+
+    from stabflow.dynamics.broaching import manoeuvre_checks, scenario
+    from stabflow.io import write_netcdf
+    from stabflow.plots.broaching import manoeuvres_figure, motions_figure, strip_figure
+    from stabflow.validation import checks_dataset
+
+    cfg = config["broaching"]
+    ship = load_ship(Path(ships_dir) / f"{cfg['ship']}.yaml")
+    ds = scenario(ship, cfg, progress=progress)
+    man, rows, tracks, zigzags = manoeuvre_checks(ship, cfg)
+    ds = ds.merge(man)
+    ds.attrs.update(man.attrs)
+    if figures:
+        for lname in ds.loading.values:
+            motions_figure(ds, str(lname), figures[f"motions_{lname}"])
+        # paper 004 Fig. 7 is case R-2 (lambda 30.5 m); else the first regular case
+        cases = [str(c) for c in ds.case.values]
+        ds.attrs.update(strip_case="R-2" if "R-2" in cases else cases[0], strip_loading=str(ds.loading.values[0]))
+        strip_figure(ds, ds.attrs["strip_loading"], ds.attrs["strip_case"], figures["strip"])
+        manoeuvres_figure(tracks, zigzags, figures["manoeuvres"])
+    write_netcdf(ds, out_nc)
+    write_netcdf(checks_dataset(cfg["ship"], "manoeuvring", rows), validation_nc)
+    return ds

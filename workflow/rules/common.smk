@@ -23,6 +23,8 @@ for _step in ("extremes", "splittime"):
     for _key in config[_step]["conditions"]:
         if _key not in ENSEMBLES:
             raise ValueError(f"config: {_step}: conditions: {_key!r} is not an ensemble (have {sorted(ENSEMBLES)})")
+if "broaching" in config and config["broaching"]["ship"] not in SHIPS:
+    raise ValueError(f"config: broaching: ship {config['broaching']['ship']!r} is not in ships")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")
@@ -118,7 +120,27 @@ def validation_files():
         + per_ship(f"{RESULTS}/validation/{{ship}}_dynamics.nc")
         + [f"{RESULTS}/validation/{k}_ensemble.nc" for k in ENSEMBLES]
         + capsize_1dof_outputs("validation")
+        + broaching_outputs("validation")
     )
+
+
+def broaching_outputs(which="nc"):
+    """Paper 004's scenario and the manoeuvring checks when the config has a broaching section."""
+    if "broaching" not in config:
+        return []
+    s = config["broaching"]["ship"]
+    return {"nc": [f"{RESULTS}/broaching/{s}.nc"], "validation": [f"{RESULTS}/validation/{s}_manoeuvring.nc"],
+            "figures": [f"{RESULTS}/broaching/{s}_{f}.png" for f in BROACHING_FIGURES]}[which]
+
+
+def broaching_figure_names():
+    """Figure stems of the broaching step: motions per loading, the snapshot strip, the manoeuvres."""
+    if "broaching" not in config:
+        return []
+    return [f"motions_{l}" for l in config["broaching"]["loadings"]] + ["strip", "manoeuvres"]
+
+
+BROACHING_FIGURES = broaching_figure_names()
 
 
 def capsize_1dof_outputs(which="nc"):
@@ -145,5 +167,6 @@ def all_outputs():
         + [f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]]
         + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]
         + capsize_1dof_outputs()
+        + broaching_outputs()
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )

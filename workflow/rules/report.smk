@@ -13,6 +13,7 @@ rule report:
         extremes=[f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]],
         splittime=[f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]],
         capsize_1dof=capsize_1dof_outputs(),
+        broaching=broaching_outputs() + broaching_outputs("figures"),
         source=report_sources(),
     output:
         html=f"{RESULTS}/report/html/index.html",

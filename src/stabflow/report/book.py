@@ -277,11 +277,74 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
     return _render("rare_events.md.j2", conditions=conditions, one_dof=one_dof)
 
 
+def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
+    """Paper 004's scenario, the calm-water manoeuvres and the surf-riding thresholds; None if not run."""
+    if "broaching" not in config:
+        return None
+    ship = config["broaching"]["ship"]
+    p = results / "broaching" / f"{ship}.nc"
+    if not p.exists():
+        return None
+    d = _open(p)
+
+    def when(flag, t):
+        return f"{float(t):.1f}" if int(flag) else "no"
+
+    rows = []
+    for lo in d.loading.values:
+        for c in d.case.values:
+            r = d.sel(loading=lo, case=c)
+            wave = (f"regular λ {float(r.wavelength):g} m, H {float(r.wave_height):g} m" if np.isfinite(float(r.wavelength))
+                    else f"PM Hs {float(r.wave_height):g} m")
+            rows.append({"loading": str(lo), "kg": float(r.kg), "case": str(c), "wave": wave,
+                         "capsize": when(r.capsized, r.capsize_time), "broach": when(r.broach, r.broach_time),
+                         "surf": when(r.surf_riding, r.surf_riding_longest),
+                         "roll": float(np.nanmax(np.abs(r["roll"]))), "yaw": float(np.nanmax(np.abs(r["yaw"])))})
+
+    def val(k, fmt=".1f", unit=""):
+        v = float(d[k]) if k in d else np.nan
+        return f"{v:{fmt}}{unit}" if np.isfinite(v) else "not completed"
+
+    L = float(d.attrs.get("manoeuvre_length", np.nan))
+    man_rows = []
+    for helm in (35, 20):
+        for k, title in (("advance", "advance"), ("transfer", "transfer"), ("tactical_diameter", "tactical diameter"),
+                         ("steady_diameter", "steady turning diameter")):
+            v = float(d[f"turning_{helm}_{k}"])
+            man_rows.append((f"turning, rudder {helm}°: {title}", f"{v:.1f} m ({v / L:.2f} L)" if np.isfinite(v)
+                             else "not completed"))
+        man_rows.append((f"turning, rudder {helm}°: speed loss", val(f"turning_{helm}_speed_loss", ".0%")))
+    for z in (10, 20):
+        man_rows.append((f"zig-zag {z}°/{z}°: first overshoot", val(f"zigzag_{z}_first_overshoot", ".1f", "°")))
+        man_rows.append((f"zig-zag {z}°/{z}°: second overshoot", val(f"zigzag_{z}_second_overshoot", ".1f", "°")))
+    man_rows.append(("autopilot, 10° course change: overshoot", val("autopilot_step_overshoot", ".3f", "°")))
+    surf = [{"lam": float(d.surf_riding_wavelength[i]), "melnikov": float(d.surf_riding_melnikov[i]),
+             "surge": float(d.surf_riding_surge_only[i]), "six": float(d.surf_riding_six_dof[i])}
+            for i in range(d.sizes.get("surf_case", 0))]
+    figs = _optional_figures(results, figdir, f"broaching/{ship}_{{}}.png",
+                             tuple(f"motions_{lo}" for lo in d.loading.values) + ("strip", "manoeuvres"))
+    figures = {"motions": [{"loading": str(lo), "file": figs[f"motions_{lo}"]} for lo in d.loading.values],
+               "strip": figs["strip"], "manoeuvres": figs["manoeuvres"]}
+    from stabflow.config import load_ship
+
+    sh = load_ship(Path(config.get("ships_dir", "config/ships")) / f"{ship}.yaml")
+    mcfg = sh.data.get("manoeuvring", {})
+    foils = [{**f, "name": f.get("name", "foil"), "source": f.get("source", "source not given")} for f in mcfg.get("foils", [])]
+    given = {k: v for k, v in mcfg.get("derivatives", {}).items() if k != "source"}
+    derivatives = (f"given {', '.join(sorted(given))} ({mcfg['derivatives'].get('source', 'source not given')}), the rest "
+                   if given else "") + "Clarke, Gedling & Hine (1983)"
+    return _render("broaching.md.j2", ship=ship, a=config["broaching"], rows=rows, foils=foils, derivatives=derivatives,
+                   man={"rows": man_rows, "length": L, "b_l": float(d.attrs.get("manoeuvre_breadth", np.nan)) / L},
+                   surf=surf, figures=figures, strip_case=d.attrs.get("strip_case", ""),
+                   strip_loading=d.attrs.get("strip_loading", ""))
+
+
 #: validation steps in report order: (step attribute, title, file suffix)
 STEPS = [("statics", "Calm-water statics", "statics"), ("waves", "Stability in waves and metric C", "waves"),
          ("dynamics", "Time domain (3-DOF)", "dynamics"),
          ("ensemble", "Irregular seas: seaways, step size, extremes, split-time", "ensemble"),
-         ("capsize", "Capsize-rate methods against brute force (1-DOF box barge)", "capsize")]
+         ("capsize", "Capsize-rate methods against brute force (1-DOF box barge)", "capsize"),
+         ("manoeuvring", "6-DOF manoeuvring and surf-riding", "manoeuvring")]
 
 
 def validation_rows(results: Path, expected: dict[str, list[tuple[str, str]]]) -> dict[str, list[dict]]:
@@ -364,8 +427,9 @@ def expected_validation(ships: list[str], config: dict) -> dict:
     ensemble condition, the 1-DOF capsize case when configured."""
     ens = [(f"{c['ship']}_{c['name']}", c["ship"]) for c in config.get("ensembles", [])]
     one_dof = [("box1dof", "box1dof")] if config.get("capsize_1dof", {}).get("bands") else []
+    six = [(config["broaching"]["ship"], config["broaching"]["ship"])] if "broaching" in config else []
     return {"statics": [(s, s) for s in ships], "waves": [(s, s) for s in ships], "dynamics": [(s, s) for s in ships],
-            "ensemble": ens, "capsize": one_dof}
+            "ensemble": ens, "capsize": one_dof, "manoeuvring": six}
 
 
 def build_report(results: str | Path, ships: list[str], config: dict, source: str | Path, out_html: str | Path) -> Path:
@@ -387,6 +451,7 @@ def build_report(results: str | Path, ships: list[str], config: dict, source: st
         chapters = {f"ship_{s}": ship_page(s, results, figdir) for s in ships}
         chapters["waves"] = waves_page(results, figdir)
         chapters["rare_events"] = rare_events_page(results, config, figdir)
+        chapters["broaching"] = broaching_page(results, config, figdir)
         chapters = {stem: page for stem, page in chapters.items() if page}
         for stem, page in chapters.items():
             (book / f"{stem}.md").write_text(page)

@@ -1,0 +1,249 @@
+"""Paper 004's stern-quartering scenario with the 6-DOF model (issue 17).
+
+Lin, Meinhold & Salvesen (1998) simulate the 20.7 m fishing vessel *Italian Gold* with LAMP-2 at
+10 kn in waves 45 degree off the stern from starboard, autopilot holding the course, the ship
+starting on course in the trough: regular waves of height 1.8 m and lengths 21.3, 30.5, 42.7 and
+85.3 m (their Table 3) and Pierson-Moskowitz seas of Hs 3.1, 4.0 and 4.6 m (Table 4), with G at
+midships 0.08 m above the design waterline ("heavy loading"). stabflow runs the same cases on its
+25 m trawler at that heavy loading (same mass, KG = midship draft + 0.08 m) and at its tank-test
+loading, and reports the six motions and the rudder, and which records capsize, broach or surf-ride.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from stabflow.config import Ship
+from stabflow.constants import G, KNOT
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics.manoeuvres import record_events
+from stabflow.dynamics.manoeuvring import Autopilot, Foil, Manoeuvring, SixDof, build_six_dof, simulate_six_dof
+from stabflow.dynamics.model import coefficients
+from stabflow.dynamics.roll_damping import particulars, section_parameters
+from stabflow.dynamics.tables import section_tables
+from stabflow.geometry import Sections, build_hull
+from stabflow.hydrostatics.statics import compute_statics, equilibrium
+from stabflow.io import annotate
+from stabflow.waves.seaway import Seaway
+
+MOTIONS = ("surge", "sway", "heave", "roll", "pitch", "yaw", "rudder")
+
+
+def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg: float = 0.0) -> Manoeuvring:
+    """The ship config's ``manoeuvring`` section as a :class:`Manoeuvring` (added mass from Capytaine's
+    zero-frequency limit of the hull mesh unless the config says ``clarke`` or gives values)."""
+    cfg = ship.data.get("manoeuvring", {})
+    foils = tuple(Foil(x=f["x"], z=f["z"], span=f["span"], chord=f["chord"], rudder=f.get("rudder", False),
+                       stall_deg=f.get("stall_deg", 24.0), trail_deg=f.get("trail_deg", 12.0))
+                  for f in cfg.get("foils", []))
+    ap = cfg.get("autopilot", {})
+    autopilot = Autopilot(ga=ap.get("ga", 0.9), gb=ap.get("gb", 20.0),
+                          proportional_band_deg=ap.get("proportional_band_deg", 5.0),
+                          slew_rate_deg_s=ap.get("slew_rate_deg_s", 5.5), max_deg=ap.get("max_deg", 35.0),
+                          heading_deg=heading_deg)
+    am = cfg.get("added_mass", "capytaine")
+    if am == "capytaine":
+        from stabflow.dynamics.hydro import bem_mesh, manoeuvring_added_mass
+
+        h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+        added = manoeuvring_added_mass(bem_mesh(ship), h0, th0, float(st["lcg"]), float(st["kg"]), ship.rho)
+    elif am == "clarke":
+        added = None
+    else:
+        added = np.array([[am["a11"], 0.0, 0.0], [0.0, am["a22"], am["a26"]], [0.0, am["a26"], am["a66"]]])
+    der = {k: v for k, v in cfg.get("derivatives", {}).items() if k != "source"}
+    return Manoeuvring(foils=foils, autopilot=autopilot, derivatives=der, form_factor=cfg.get("form_factor", 0.0),
+                       side_force_height=cfg.get("side_force_height"), added_mass=added)
+
+
+def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | None = None,
+                  tables: tuple[int, int] = (181, 101)) -> SixDof:
+    """The ship (optionally loaded to ``kg`` [m]) ready for 6-DOF records at ``speed_kn`` [kn] in waves
+    of ``heading_deg`` [degree] relative to the course (0 following), with its config coefficients."""
+    s = ship.modified(kg=kg) if kg is not None else ship
+    hull = build_hull(s)
+    st = compute_statics(s, hull)
+    sec = Sections(hull)
+    co = coefficients(s, sec, st, None, speed=speed_kn * KNOT)
+    return build_six_dof(sec, st, co, s.rho, heading_deg, speed_kn * KNOT, manoeuvring_from_ship(s, sec, st),
+                         tables=section_tables(sec, *tables))
+
+
+def heavy_kg(ship: Ship, above_waterline: float) -> float:
+    """KG [m] that puts G ``above_waterline`` [m] above the ship's upright midship waterline (paper
+    004: 0.08 m), the mass unchanged."""
+    hull = build_hull(ship)
+    st = compute_statics(ship, hull)
+    return float(st["draft_mid"]) + above_waterline
+
+
+def trough_phase(model: SixDof, omega: float) -> float:
+    """Phase of a regular wave of frequency ``omega`` that puts a trough at G at t = 0 (paper 004:
+    "the ship is at the bottom of the incident wave")."""
+    k = omega**2 / float(model.p[K.P_G])
+    return float(np.pi - k * float(model.p[K.P_XG]) * np.cos(np.radians(model.heading_deg)))
+
+
+def scenario(ship: Ship, cfg: dict, progress: bool = False) -> xr.Dataset:
+    """Run paper 004's cases (``cfg``: the config's ``broaching`` section) at each loading; returns
+    time histories along (loading, case, time), NaN after a record's end (``end_time``), and the
+    events of each record."""
+    from tqdm import tqdm
+
+    dt = float(cfg["dt"])
+    loads = {}
+    for name, spec in cfg["loadings"].items():
+        loads[name] = heavy_kg(ship, float(spec["kg_above_waterline"])) if "kg_above_waterline" in spec else spec.get("kg")
+    reg, irr = cfg["regular"], cfg["irregular"]
+    cases = [("regular", float(lam), float(reg["height"])) for lam in reg["wavelengths"]]
+    cases += [("irregular", np.nan, float(hs)) for hs in irr["hs"]]
+    duration = max(float(reg["duration"]), float(irr["duration"]))
+    n = int(round(duration / dt)) + 1
+    data = {v: np.full((len(loads), len(cases), n), np.nan) for v in MOTIONS}
+    ev_names = ("capsized", "capsize_time", "broach", "broach_time", "surf_riding", "surf_riding_time",
+                "surf_riding_longest", "end_time")
+    ev = {k: np.zeros((len(loads), len(cases))) for k in ev_names}
+    kgs = np.zeros(len(loads))
+    wave = np.full((len(cases), 3), np.nan)  # wave number, encounter frequency, phase (regular cases)
+    bar = tqdm(total=len(loads) * len(cases), desc=f"{ship.name} paper 004 cases", disable=not progress)
+    for i, (lname, kg) in enumerate(loads.items()):
+        model = six_dof_model(ship, float(cfg["heading_deg"]), float(cfg["speed_kn"]), kg)
+        kgs[i] = float(model.p[K.P_ZG])
+        for j, (kind, lam, h) in enumerate(cases):
+            if kind == "regular":
+                w = np.sqrt(G * 2 * np.pi / lam)
+                waves = (np.array([0.5 * h]), np.array([w]), np.array([trough_phase(model, w)]))
+                dur, cel = float(reg["duration"]), w / (2 * np.pi / lam)
+                k = 2 * np.pi / lam
+                wave[j] = (k, w - k * model.speed * np.cos(np.radians(model.heading_deg)), waves[2][0])
+            else:
+                sea = Seaway(kind=irr["spectrum"], hs=h, n_components=int(irr["n_components"]))
+                waves = sea.components(int(irr["seed"]), j)
+                dur, cel = float(irr["duration"]), G / sea.modal_frequency
+            ds = simulate_six_dof(model, waves, dur, dt)
+            m = ds.sizes["time"]
+            for v in MOTIONS:
+                data[v][i, j, :m] = ds[v].values
+            e = record_events(ds, broach_deg=float(cfg["broach_deg"]), celerity=cel,
+                              surf_tolerance=float(cfg["surf_tolerance"]), surf_min_s=float(cfg["surf_min_s"]),
+                              heading_deg=float(cfg["heading_deg"]))
+            for k in ev_names[:-1]:
+                ev[k][i, j] = e[k]
+            ev["end_time"][i, j] = ds.attrs["end_time"]
+            bar.update()
+    bar.close()
+    dims = ("loading", "case", "time")
+    out = xr.Dataset({v: (dims, data[v]) for v in MOTIONS}, coords={
+        "loading": list(loads), "case": [f"R-{k + 1}" if c[0] == "regular" else f"IR-{k + 1 - len(reg['wavelengths'])}"
+                                         for k, c in enumerate(cases)],
+        "time": np.arange(n) * dt})
+    out["wavelength"] = ("case", np.array([c[1] for c in cases]))
+    out["wave_height"] = ("case", np.array([c[2] for c in cases]))
+    out["kg"] = ("loading", kgs)
+    out["wave_number"] = ("case", wave[:, 0])
+    out["encounter_frequency"] = ("case", wave[:, 1])
+    out["wave_phase"] = ("case", wave[:, 2])
+    hull = build_hull(ship)
+    sp = section_parameters(Sections(hull), compute_statics(ship, hull))
+    out = out.assign_coords(outline_x=("station", sp["x"].values),
+                            outline_halfbreadth=("station", 0.5 * sp["breadth"].values))
+    for k in ev_names:
+        out[k] = (("loading", "case"), ev[k].astype(int) if k in ("capsized", "broach", "surf_riding") else ev[k])
+    out.attrs.update(ship=ship.name, speed_kn=float(cfg["speed_kn"]), heading_deg=float(cfg["heading_deg"]), dt=dt,
+                     lcg=float(model.p[K.P_XG]),
+                     reference="Lin, Meinhold & Salvesen (1998), USCG CG-D-17-98, Tables 3-4, Figs 7-14",
+                     note="NaN after a record's end (capsize): see end_time")
+    return annotate(out)
+
+
+def manoeuvre_checks(ship: Ship, cfg: dict):
+    """Calm-water manoeuvres at the ship file's loading and the commanded speed, and the surf-riding
+    thresholds in regular following waves of the scenario's height at its two longest wavelengths.
+
+    Returns (dataset of the results, validation rows, turning tracks, zig-zag histories)."""
+    from dataclasses import replace
+
+    from stabflow.dynamics.manoeuvres import trajectory, turning_circle, zigzag_overshoots
+    from stabflow.dynamics.surf_riding import melnikov_threshold, simulated_threshold
+    from stabflow.validation import Check
+
+    model = six_dof_model(ship, 0.0, float(cfg["speed_kn"]))
+    mc = cfg["manoeuvres"]
+    calm = ([], [], [])
+    dt = float(cfg["dt"])
+    L = model.length
+    out, tracks, zigzags, rows = {}, {}, {}, []
+    straight = simulate_six_dof(replace(model, m=_steer(model, "fixed", 0.0)), calm, mc["straight_s"], dt)
+    dev = float(np.max(np.abs(straight["yaw"])))
+    rows.append(Check(f"calm water, rudder amidships, {mc['straight_s']:g} s: largest heading deviation", dev, 1e-6, "degree",
+                      "a straight course (the hull is symmetric)", kind="consistency"))
+    for helm in (35.0, 20.0):
+        ds = simulate_six_dof(replace(model, m=_steer(model, "fixed", helm)), calm, mc["turning_s"], dt)
+        tc = turning_circle(ds)
+        for k, v in tc.items():
+            out[f"turning_{int(helm)}_{k}"] = v
+        tracks[f"turning circle, rudder {helm:g}°"] = trajectory(ds)
+    for z in (10.0, 20.0):
+        ds = simulate_six_dof(replace(model, m=_steer(model, "zigzag", z, z)), calm, mc["zigzag_s"], dt)
+        first, second = zigzag_overshoots(ds, z)
+        out[f"zigzag_{int(z)}_first_overshoot"] = first
+        out[f"zigzag_{int(z)}_second_overshoot"] = second
+        zigzags[f"{z:g}/{z:g}"] = (ds["time"].values, ds["yaw"].values, ds["rudder"].values)
+    step = simulate_six_dof(replace(model, m=_steer(model, "autopilot", 0.0, heading=10.0)), calm, mc["step_s"], dt)
+    out["autopilot_step_overshoot"] = float(step["yaw"].max()) - 10.0
+    out["autopilot_step_final"] = float(step["yaw"][-1])
+    h = float(cfg["regular"]["height"])
+    lams = sorted(float(x) for x in cfg["regular"]["wavelengths"])[-2:]
+    thr = np.full((len(lams), 3), np.nan)
+    for i, lam in enumerate(lams):
+        if not mc["surf_riding"]:
+            for what in ("6-DOF with only surge free (the surge equation in time)", "full 6-DOF"):
+                rows.append(Check.not_applicable(f"surf-riding threshold, lambda {lam:g} m: {what} / Melnikov - 1",
+                                                 "broaching.manoeuvres.surf_riding is off in this config", "-",
+                                                 "Melnikov's method on the surge equation"))
+            continue
+        c = np.sqrt(G * lam / (2 * np.pi))
+        u_m = melnikov_threshold(model, lam, h)
+        thr[i, 0] = u_m
+        for j, flags in ((1, (1, 0, 0, 0, 0, 0)), (2, (1, 1, 1, 1, 1, 1))):
+            p = model.p.copy()
+            p[K.P_FREE:K.P_FREE + 6] = flags
+            try:
+                thr[i, j] = simulated_threshold(replace(model, p=p), lam, h, 0.3 * u_m, 0.98 * c, tol=0.01)
+            except ValueError as e:
+                thr[i, j] = np.nan
+                out[f"surf_riding_{lam:g}_{j}_error"] = str(e)
+        tag = f"surf-riding threshold, regular following wave lambda {lam:g} m (lambda/L {lam / L:.2f}), H {h:g} m"
+        ref = f"Melnikov's method on the surge equation: U_cr {u_m:.3f} m/s"
+        for j, what in ((1, "6-DOF with only surge free (the surge equation in time)"), (2, "full 6-DOF")):
+            name = f"{tag}: {what} / Melnikov - 1"
+            if np.isfinite(thr[i, j]):
+                rows.append(Check(name, thr[i, j] / u_m - 1.0, 0.05, "-", ref))
+            else:
+                rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
+                                         "-", ref, tolerance=0.05))
+    ds = xr.Dataset({k: ((), v) for k, v in out.items() if not isinstance(v, str)})
+    ds["surf_riding_wavelength"] = ("surf_case", np.array(lams))
+    ds["surf_riding_melnikov"] = ("surf_case", thr[:, 0])
+    ds["surf_riding_surge_only"] = ("surf_case", thr[:, 1])
+    ds["surf_riding_six_dof"] = ("surf_case", thr[:, 2])
+    ds.attrs.update(manoeuvre_length=L, manoeuvre_speed=model.speed,
+                    manoeuvre_breadth=float(particulars(section_parameters(model.sec, _statics(ship))).breadth))
+    return ds, rows, tracks, zigzags
+
+
+def _statics(ship: Ship) -> xr.Dataset:
+    return compute_statics(ship, build_hull(ship))
+
+
+def _steer(model: SixDof, mode: str, helm: float, zigzag: float = 10.0, heading: float = 0.0) -> np.ndarray:
+    """A copy of the model's manoeuvring vector with the steering mode set."""
+    from stabflow.dynamics import _kernels_6dof as K6
+
+    m = model.m.copy()
+    m[K6.M_STEERING] = {"fixed": K6.STEER_FIXED, "autopilot": K6.STEER_AUTOPILOT, "zigzag": K6.STEER_ZIGZAG}[mode]
+    m[K6.M_HELM] = np.radians(helm)
+    m[K6.M_ZIGZAG] = np.radians(zigzag)
+    m[K6.M_PSID] = np.radians(heading)
+    return m

@@ -1,0 +1,110 @@
+"""Figures of the 6-DOF step (issue 17): paper 004's scenario and the calm-water manoeuvres."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from stabflow.plots._style import atomic_savefig, plt
+
+
+def motions_figure(ds: xr.Dataset, loading: str, path) -> None:
+    """Six motions and the rudder of every case of one loading (paper 004 Figs 8-14): one row per
+    case; roll, yaw with the rudder, pitch with heave, sway."""
+    d = ds.sel(loading=loading)
+    cases = list(d.case.values)
+    fig, axes = plt.subplots(len(cases), 4, figsize=(13, 1.9 * len(cases)), sharex="row")
+    t = d.time.values
+    for i, c in enumerate(cases):
+        r = d.sel(case=c)
+        ax = axes[i]
+        ax[0].plot(t, r["roll"], lw=0.8)
+        ax[0].set_ylabel(f"{c}\nroll [°]")
+        ax[1].plot(t, r["yaw"], lw=0.8, label="yaw")
+        ax[1].plot(t, r["rudder"], lw=0.8, label="rudder")
+        ax[1].set_ylabel("[°]")
+        ax[2].plot(t, r["pitch"], lw=0.8, label="pitch [°]")
+        ax[2].plot(t, r["heave"], lw=0.8, label="heave [m]")
+        ax[3].plot(t, r["sway"], lw=0.8, label="sway [m]")
+        ax[3].plot(t, r["surge"], lw=0.8, label="surge [m]")
+        ev = []
+        if int(r["capsized"]):
+            ev.append(f"capsize {float(r['capsize_time']):.1f} s")
+        if int(r["broach"]):
+            ev.append(f"broach {float(r['broach_time']):.1f} s")
+        if int(r["surf_riding"]):
+            ev.append(f"surf-riding {float(r['surf_riding_longest']):.0f} s")
+        ax[0].set_title(", ".join(ev) or "no event", fontsize=8, loc="left")
+        for a in ax:
+            a.grid(alpha=0.3)
+        if i == 0:
+            for a in ax[1:]:
+                a.legend(fontsize=7, loc="upper right")
+    for a in axes[-1]:
+        a.set_xlabel("time [s]")
+    fig.suptitle(f"{ds.attrs['ship']}, {loading} loading (KG {float(d['kg']):.3f} m): {ds.attrs['speed_kn']:g} kn, "
+                 f"waves {ds.attrs['heading_deg']:g}° off the stern")
+    atomic_savefig(fig, path)
+    plt.close(fig)
+
+
+def strip_figure(ds: xr.Dataset, loading: str, case: str, path, every: float = 1.0, span: float = 10.0) -> None:
+    """Top view of the hull in the wave every ``every`` seconds over the first ``span`` seconds (paper 004
+    Fig. 7), centred on G: the waterline outline turned by the yaw, and the crests of the regular
+    wave (k xi - w_e t + phase = 2 pi n in the frame moving with the commanded speed)."""
+    d = ds.sel(loading=loading, case=case)
+    dt = float(d.time[1] - d.time[0])
+    beta = np.radians(ds.attrs["heading_deg"])
+    eb = np.array([np.cos(beta), np.sin(beta)])
+    xg = float(ds.attrs["lcg"])
+    xo, hb = ds["outline_x"].values - xg, ds["outline_halfbreadth"].values
+    ring = np.concatenate([np.column_stack([xo, hb]), np.column_stack([xo[::-1], -hb[::-1]])])
+    times = np.arange(0.0, min(span, float(d["end_time"])) + 1e-9, every)
+    fig, axes = plt.subplots(1, len(times), figsize=(1.7 * len(times), 3.4), sharey=True)
+    axes = np.atleast_1d(axes)
+    k, we, ph = float(d["wave_number"]), float(d["encounter_frequency"]), float(d["wave_phase"])
+    for ax, tt in zip(axes, times):
+        n = int(round(tt / dt))
+        G = np.array([float(d["surge"][n]) + xg, float(d["sway"][n])])
+        psi = np.radians(float(d["yaw"][n]))
+        R = np.array([[np.cos(psi), -np.sin(psi)], [np.sin(psi), np.cos(psi)]])
+        pts = ring @ R.T
+        # plotted with x (forward) up and y (port) to the left
+        ax.fill(-pts[:, 1], pts[:, 0], color="0.3")
+        if np.isfinite(k):
+            xi_g = float(G @ eb)
+            m0 = np.floor((k * (xi_g - 40.0) - we * tt + ph) / (2 * np.pi))
+            for m in np.arange(m0, m0 + 2 + 80.0 * k / (2 * np.pi)):
+                xi = (2 * np.pi * m + we * tt - ph) / k - xi_g
+                line = xi * eb + np.outer([-60.0, 60.0], [-eb[1], eb[0]])
+                ax.plot(-line[:, 1], line[:, 0], color="tab:blue", lw=0.8)
+        ax.set_title(f"{tt:.0f} s\nroll {float(d['roll'][n]):.0f}°, yaw {float(d['yaw'][n]):.0f}°", fontsize=7)
+        ax.set_xlim(-20, 20)
+        ax.set_ylim(-20, 20)
+        ax.set_aspect("equal")
+        ax.set_xticks([])
+    axes[0].set_ylabel("along the course [m]")
+    fig.suptitle(f"{case}, {loading} loading: hull outline and wave crests, top view centred on G (port to the left)")
+    atomic_savefig(fig, path)
+    plt.close(fig)
+
+
+def manoeuvres_figure(tracks: dict, zigzags: dict, path) -> None:
+    """Turning-circle tracks and zig-zag headings with their rudder angles."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.5))
+    for name, (X, Y) in tracks.items():
+        a.plot(-Y, X, label=name)
+    a.set_xlabel("to starboard [m]")
+    a.set_ylabel("along the approach course [m]")
+    a.set_aspect("equal")
+    a.legend(fontsize=8)
+    a.grid(alpha=0.3)
+    for name, (t, psi, rud) in zigzags.items():
+        line, = b.plot(t, psi, label=f"{name} heading")
+        b.plot(t, rud, ls="--", color=line.get_color(), label=f"{name} rudder")
+    b.set_xlabel("time [s]")
+    b.set_ylabel("[°]")
+    b.legend(fontsize=8)
+    b.grid(alpha=0.3)
+    atomic_savefig(fig, path)
+    plt.close(fig)

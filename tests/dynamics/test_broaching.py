@@ -1,0 +1,47 @@
+"""Paper 004's scenario plumbing (issue 17): loadings, the trough start, the dataset of a small run."""
+
+import numpy as np
+import pytest
+
+from stabflow.config import load_pipeline, load_ship
+from stabflow.constants import G
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics.broaching import heavy_kg, scenario, six_dof_model, trough_phase
+from stabflow.geometry import build_hull
+from stabflow.hydrostatics.statics import compute_statics
+
+from ..conftest import ROOT, SHIPS
+
+
+def test_heavy_loading_puts_g_above_the_waterline():
+    ship = load_ship(SHIPS / "barge.yaml")
+    st = compute_statics(ship, build_hull(ship))
+    assert heavy_kg(ship, 0.08) == pytest.approx(float(st["draft_mid"]) + 0.08, abs=1e-12)
+
+
+def test_records_start_in_the_trough():
+    """eta at G's station at t = 0 is -a (paper 004: the ship starts at the bottom of the wave)."""
+    ship = load_ship(SHIPS / "barge.yaml")
+    model = six_dof_model(ship, 45.0, 10.0, tables=(37, 21))
+    lam = 60.0
+    w = np.sqrt(G * 2 * np.pi / lam)
+    ph = trough_phase(model, w)
+    k = 2 * np.pi / lam
+    xi_g = float(model.p[K.P_XG]) * np.cos(np.radians(45.0))
+    assert np.cos(k * xi_g + ph) == pytest.approx(-1.0, abs=1e-12)
+
+
+def test_scenario_dataset_of_the_test_profile():
+    """Shapes, integer events, time histories NaN only after a record's end."""
+    cfg = load_pipeline(ROOT / "config" / "test.yaml")["broaching"]
+    ship = load_ship(SHIPS / f"{cfg['ship']}.yaml")
+    ds = scenario(ship, cfg)
+    assert ds.sizes["loading"] == len(cfg["loadings"])
+    assert list(ds.case.values) == ["R-1", "IR-1"]
+    for v in ("capsized", "broach", "surf_riding"):
+        assert ds[v].dtype.kind == "i" and set(np.unique(ds[v].values)) <= {0, 1}
+    for c in ds.case.values:
+        r = ds.sel(loading=ds.loading.values[0], case=c)
+        n = int(round(float(r["end_time"]) / ds.attrs["dt"])) + 1
+        assert np.isfinite(r["roll"].values[:n]).all()
+        assert np.isnan(r["roll"].values[n:]).all()
