@@ -264,7 +264,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
 
 
 def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,
-              points_per_wavelength: float = 8.0):
+              points_per_wavelength: float = 8.0, dtype=np.float64):
     """Line table (2 nsteps + 1, npoints, 3) of (eta, S, dS/dxi) from time ``t0`` [s] on the
     half-step grid, its first point and spacing (xi0, dxi) [m], and the number of intervals of a
     periodic table (0: not periodic).
@@ -286,12 +286,13 @@ def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: f
     h = 2 * np.pi / kmax / points_per_wavelength
     n = int(np.ceil(2 * reach / h)) + 1
     xi = centre - reach + h * np.arange(n)
-    tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half)
+    tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half, dtype=dtype)
     return np.ascontiguousarray(tab), float(xi[0]), float(h), 0
 
 
 def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg: float = 90.0, s0=None,
-                     points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 60.0) -> xr.Dataset:
+                     points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 20.0,
+                     dtype=np.float32) -> xr.Dataset:
     """Simulate one 6-DOF record from the calm-water rest state (or ``s0``).
 
     Parameters
@@ -306,9 +307,11 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
         The wave grows from zero over this time [s] (smoothstep), so that the ship enters it on the
         motion that continues the calm-water one (0: the full wave from the start).
     chunk_s : float
-        Irregular waves are tabulated in chunks of this length [s] on a line of points centred on
-        the ship at the chunk's start and reaching the hull plus the drift at twice the commanded
-        speed (plus 2 m/s); a chunk the ship leaves is tabulated again twice as wide.
+        Irregular waves are tabulated in chunks of this length [s] on a line of points around the
+        ship's course over the chunk (its drift rate at the chunk's start, plus 2 m/s either way);
+        a chunk the ship leaves is tabulated again twice as wide.
+    dtype : numpy dtype
+        Of the irregular-wave table (float32 halves its cost, as the 3-DOF ensembles' tables).
 
     Returns
     -------
@@ -329,10 +332,15 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
     while n0 < nsteps and status == K6.OK:
         n1 = min(nsteps, n0 + per)
         s = out[n0]
-        centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb
-        reach = hull + (2.0 * model.speed + 2.0) * (n1 - n0) * dt
+        # the ship's drift along xi in the moving frame: its present rate over the chunk, plus an
+        # allowance of 2 m/s for the change of that rate (a chunk the ship leaves is redone wider)
+        span = (n1 - n0) * dt
+        rate = s[K.S_RATE + K.S_X] * cb + s[K.S_RATE + K.S_Y] * sb
+        centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb + 0.5 * rate * span
+        reach = hull + (0.5 * abs(rate) + 2.0) * span
         while True:
-            ltab, xi0, h, wrap = wave_line(model, waves, n0 * dt, n1 - n0, dt, centre, reach, points_per_wavelength)
+            ltab, xi0, h, wrap = wave_line(model, waves, n0 * dt, n1 - n0, dt, centre, reach, points_per_wavelength,
+                                           dtype)
             if ramp_s > 0:
                 r = np.clip((n0 * dt + np.arange(len(ltab)) * 0.5 * dt) / ramp_s, 0.0, 1.0)
                 ltab *= (r * r * (3.0 - 2.0 * r))[:, None, None]

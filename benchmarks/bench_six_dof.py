@@ -1,0 +1,83 @@
+"""6-DOF speed and step-size convergence (issue 17). Run: python benchmarks/bench_six_dof.py [--ship trawler]
+
+1. Step-size convergence: one record (Pierson-Moskowitz Hs 3.1 m, paper 004 IR-1 with the trawler;
+   the ensemble sea with DTMB 5415), 10 kn, waves 45 degree off the stern, autopilot on, at
+   dt = 0.0125 ... 0.2 s: roll and yaw standard deviations and largest |roll| over the first
+   ``--seconds``, relative to the smallest step. The converged step is the largest whose three
+   figures lie within 1 % of the smallest step's.
+2. CPU-seconds per simulated hour on one core (numba at one thread), 6-DOF at the converged step and
+   at the 3-DOF ensembles' 0.5 s, beside the 3-DOF kernel on the same ship, sea and step
+   (target: 6-DOF <= 0.1 CPU-s per simulated hour).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numba  # noqa: E402
+import numpy as np  # noqa: E402
+
+from stabflow.config import load_ship  # noqa: E402
+from stabflow.dynamics import _kernels as K  # noqa: E402
+from stabflow.dynamics.broaching import six_dof_model  # noqa: E402
+from stabflow.dynamics.manoeuvring import simulate_six_dof  # noqa: E402
+from stabflow.dynamics.tables import kernel_args  # noqa: E402
+from stabflow.waves.seaway import Seaway  # noqa: E402
+from stabflow.waves.synthesis import station_wave_table  # noqa: E402
+
+
+def three_dof_cpu(model, waves, dt, seconds):
+    """CPU seconds of the 3-DOF kernel (wave table + RK4) for ``seconds`` of record."""
+    n = int(round(seconds / dt))
+    t_half = np.arange(2 * n + 1) * 0.5 * dt
+    p = model.p.copy()
+    p[K.P_FREE:K.P_FREE + 6] = (0, 0, 1, 1, 1, 0)
+    out = np.empty((n + 1, K.N_STATE))
+    t0 = time.process_time()
+    wtab = station_wave_table(*waves, model.sec.x, model.heading_deg, model.speed, t_half, dtype=np.float32)
+    K._simulate(*kernel_args(model.sec, model.tables), p, wtab, dt, 0, n, model.s0[:K.N_STATE], np.radians(90.0),
+                out, np.empty((0, 6)))
+    return time.process_time() - t0
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--ship", default="trawler")
+    ap.add_argument("--seconds", type=float, default=600.0)
+    a = ap.parse_args(argv)
+    numba.set_num_threads(1)
+    ship = load_ship(f"config/ships/{a.ship}.yaml")
+    model = six_dof_model(ship, 45.0, 10.0)
+    sea = Seaway(kind="pierson_moskowitz", hs=3.1) if a.ship == "trawler" else \
+        Seaway(kind="bretschneider", hs=8.5, tp=15.0)
+    waves = sea.components(17, 0)
+    print(f"{a.ship}: {len(model.sec.x)} stations, {len(waves[0])} wave components, {a.seconds:g} s records, one core")
+    simulate_six_dof(model, waves, 5.0, 0.1)  # compile
+    ref = None
+    stats = {}
+    for dt in (0.0125, 0.025, 0.05, 0.1, 0.2):
+        ds = simulate_six_dof(model, waves, a.seconds, dt)
+        s = np.array([float(ds["roll"].std()), float(ds["yaw"].std()), float(np.abs(ds["roll"]).max())])
+        ref = s if ref is None else ref
+        stats[dt] = s
+        rel = s / ref - 1
+        print(f"  dt {dt:6.4f} s: roll sigma {s[0]:7.3f} deg ({100 * rel[0]:+6.2f} %), yaw sigma {s[1]:7.3f} deg "
+              f"({100 * rel[1]:+6.2f} %), max |roll| {s[2]:7.2f} deg ({100 * rel[2]:+6.2f} %), status {ds.attrs['status']}")
+    ok = [dt for dt, s in stats.items() if np.all(np.abs(s / ref - 1) <= 0.01)]
+    conv = max(ok)
+    print(f"  converged step (all three within 1 % of dt = 0.0125 s): {conv:g} s")
+    for dt in sorted({conv, 0.5}):
+        t0 = time.process_time()
+        simulate_six_dof(model, waves, a.seconds, dt)
+        c6 = (time.process_time() - t0) / a.seconds * 3600.0
+        c3 = three_dof_cpu(model, waves, dt, a.seconds) / a.seconds * 3600.0
+        print(f"  dt {dt:g} s: 6-DOF {c6:.3f} CPU-s per simulated hour, 3-DOF {c3:.3f}; ratio {c6 / c3:.2f} "
+              f"(target 6-DOF <= 0.1)")
+
+
+if __name__ == "__main__":
+    main()
