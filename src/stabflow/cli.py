@@ -126,7 +126,8 @@ def _broaching(a):
     figs = None
     if a.figures:
         s = cfg["broaching"]["ship"]
-        names = [f"motions_{k}" for k in cfg["broaching"]["loadings"]] + ["strip", "manoeuvres"]
+        names = ([f"motions_{k}" for k in cfg["broaching"]["loadings"]] + ["strip", "manoeuvres"]
+                 + (["map"] if "map" in cfg["broaching"] else []))
         figs = {n: str(Path(a.figures) / f"{s}_{n}.png") for n in names}
     return steps.run_broaching(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs)
 

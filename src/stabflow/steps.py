@@ -410,9 +410,9 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     manoeuvres, and the surf-riding threshold checks → NetCDF, validation rows, figures."""
     from pathlib import Path
 
-    from stabflow.dynamics.broaching import manoeuvre_checks, scenario
+    from stabflow.dynamics.broaching import manoeuvre_checks, probability_map, scenario
     from stabflow.io import write_netcdf
-    from stabflow.plots.broaching import manoeuvres_figure, motions_figure, strip_figure
+    from stabflow.plots.broaching import manoeuvres_figure, map_figure, motions_figure, strip_figure
     from stabflow.validation import checks_dataset
 
     cfg = config["broaching"]
@@ -421,6 +421,10 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     man, rows, tracks, zigzags = manoeuvre_checks(ship, cfg)
     ds = ds.merge(man)
     ds.attrs.update(man.attrs)
+    if "map" in cfg:
+        pm = probability_map(ship, cfg, progress=progress)
+        ds = ds.merge(pm)
+        ds.attrs.update(pm.attrs)
     if figures:
         for lname in ds.loading.values:
             motions_figure(ds, str(lname), figures[f"motions_{lname}"])
@@ -429,6 +433,8 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
         ds.attrs.update(strip_case="R-2" if "R-2" in cases else cases[0], strip_loading=str(ds.loading.values[0]))
         strip_figure(ds, ds.attrs["strip_loading"], ds.attrs["strip_case"], figures["strip"])
         manoeuvres_figure(tracks, zigzags, figures["manoeuvres"])
+        if "map" in figures:
+            map_figure(ds, figures["map"])
     write_netcdf(ds, out_nc)
     write_netcdf(checks_dataset(cfg["ship"], "manoeuvring", rows), validation_nc)
     return ds

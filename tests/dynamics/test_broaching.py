@@ -45,3 +45,21 @@ def test_scenario_dataset_of_the_test_profile():
         n = int(round(float(r["end_time"]) / ds.attrs["dt"])) + 1
         assert np.isfinite(r["roll"].values[:n]).all()
         assert np.isnan(r["roll"].values[n:]).all()
+
+
+def test_probability_map_counts_and_intervals():
+    """Counts are integers out of the records, each exact binomial interval holds its estimate."""
+    from stabflow.dynamics.broaching import probability_map
+
+    cfg = load_pipeline(ROOT / "config" / "test.yaml")["broaching"]
+    ship = load_ship(SHIPS / f"{cfg['ship']}.yaml")
+    ds = probability_map(ship, cfg)
+    n = ds.attrs["map_records"]
+    for name in ("capsize", "broach"):
+        k = ds[f"map_{name}_count"].values
+        assert k.dtype.kind == "i" and np.all((0 <= k) & (k <= n))
+        p = ds[f"map_{name}_probability"].values
+        assert np.all(ds[f"map_{name}_lower"].values <= p) and np.all(p <= ds[f"map_{name}_upper"].values)
+        # 0 of 2: the exact upper bound is 1 - 0.025^(1/2)
+        zero = k == 0
+        np.testing.assert_allclose(ds[f"map_{name}_upper"].values[zero], 1 - 0.025 ** 0.5, rtol=1e-9)

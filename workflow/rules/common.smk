@@ -137,7 +137,8 @@ def broaching_figure_names():
     """Figure stems of the broaching step: motions per loading, the snapshot strip, the manoeuvres."""
     if "broaching" not in config:
         return []
-    return [f"motions_{l}" for l in config["broaching"]["loadings"]] + ["strip", "manoeuvres"]
+    return ([f"motions_{l}" for l in config["broaching"]["loadings"]] + ["strip", "manoeuvres"]
+            + (["map"] if "map" in config["broaching"] else []))
 
 
 BROACHING_FIGURES = broaching_figure_names()

@@ -247,3 +247,79 @@ def _steer(model: SixDof, mode: str, helm: float, zigzag: float = 10.0, heading:
     m[K6.M_ZIGZAG] = np.radians(zigzag)
     m[K6.M_PSID] = np.radians(heading)
     return m
+
+
+def with_condition(model: SixDof, heading_deg: float, speed: float) -> SixDof:
+    """The same ship at another wave heading [degree] and commanded speed [m/s] (thrust re-balanced
+    to the calm-water resistance there); the coefficients are the ship config's, independent of
+    speed."""
+    from dataclasses import replace
+
+    from stabflow.dynamics import _kernels_6dof as K6
+    from stabflow.dynamics.surf_riding import resistance
+
+    p = model.p.copy()
+    b = np.radians(heading_deg)
+    p[K.P_COS_BETA], p[K.P_SIN_BETA] = np.cos(b), np.sin(b)
+    m = model.m.copy()
+    m[K6.M_SPEED] = speed
+    out = replace(model, p=p, m=m, speed=float(speed), heading_deg=float(heading_deg))
+    m[K6.M_THRUST] = float(resistance(out, speed))
+    return out
+
+
+def probability_map(ship: Ship, cfg: dict, progress: bool = False) -> xr.Dataset:
+    """Capsize and broach probabilities per record over wave heading x speed for one sea state
+    (``cfg``: the broaching section's ``map``), with Clopper-Pearson intervals on every cell.
+
+    Each cell simulates ``records`` independent records of ``duration`` seconds (seaway record
+    index unique over the map, from the map's seed) with the autopilot on the original course."""
+    from scipy.stats import binomtest
+    from tqdm import tqdm
+
+    mc = cfg["map"]
+    lspec = cfg["loadings"][mc["loading"]]
+    kg = heavy_kg(ship, float(lspec["kg_above_waterline"])) if "kg_above_waterline" in lspec else lspec.get("kg")
+    base = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), kg)
+    sea = Seaway(kind=mc["sea"]["spectrum"], hs=float(mc["sea"]["hs"]), tp=mc["sea"].get("tp"),
+                 n_components=int(mc["sea"].get("n_components", 220)))
+    heads, speeds = np.asarray(mc["headings_deg"], float), np.asarray(mc["speeds_kn"], float)
+    n = int(mc["records"])
+    dt, dur = float(mc["dt"]), float(mc["duration"])
+    cap = np.zeros((len(heads), len(speeds)), int)
+    bro = np.zeros_like(cap)
+    bar = tqdm(total=cap.size * n, desc=f"{ship.name} heading x speed map", disable=not progress)
+    for i, h in enumerate(heads):
+        for j, v in enumerate(speeds):
+            model = with_condition(base, h, v * KNOT)
+            for r in range(n):
+                rec = (i * len(speeds) + j) * n + r
+                ds = simulate_six_dof(model, sea.components(int(mc["seed"]), rec), dur, dt)
+                e = record_events(ds, broach_deg=float(cfg["broach_deg"]), celerity=G / sea.modal_frequency,
+                                  surf_tolerance=float(cfg["surf_tolerance"]), surf_min_s=float(cfg["surf_min_s"]),
+                                  heading_deg=h)
+                cap[i, j] += e["capsized"]
+                bro[i, j] += e["broach"]
+                bar.update()
+    bar.close()
+    alpha = float(mc.get("alpha", 0.05))
+
+    def ci(k):
+        lo, hi = np.zeros(k.shape), np.zeros(k.shape)
+        for idx in np.ndindex(k.shape):
+            c = binomtest(int(k[idx]), n).proportion_ci(confidence_level=1 - alpha, method="exact")
+            lo[idx], hi[idx] = c.low, c.high
+        return lo, hi
+
+    dims = ("map_heading", "map_speed")
+    out = xr.Dataset(coords={"map_heading": heads, "map_speed": speeds})
+    for name, k in (("capsize", cap), ("broach", bro)):
+        lo, hi = ci(k)
+        out[f"map_{name}_count"] = (dims, k)
+        out[f"map_{name}_probability"] = (dims, k / n)
+        out[f"map_{name}_lower"] = (dims, lo)
+        out[f"map_{name}_upper"] = (dims, hi)
+    out.attrs.update(map_records=n, map_duration=dur, map_loading=mc["loading"], map_kg=float(base.p[K.P_ZG]),
+                     map_sea=f"{mc['sea']['spectrum']} Hs {float(mc['sea']['hs']):g} m", map_alpha=alpha,
+                     map_interval="Clopper-Pearson (exact binomial)")
+    return out

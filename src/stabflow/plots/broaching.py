@@ -108,3 +108,27 @@ def manoeuvres_figure(tracks: dict, zigzags: dict, path) -> None:
     b.grid(alpha=0.3)
     atomic_savefig(fig, path)
     plt.close(fig)
+
+
+def map_figure(ds: xr.Dataset, path) -> None:
+    """Capsize and broach probability per record over wave heading x speed, each cell annotated with
+    its count and 95 % interval."""
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    n = int(ds.attrs["map_records"])
+    for ax, name in zip(axes, ("capsize", "broach")):
+        p = ds[f"map_{name}_probability"].values
+        im = ax.imshow(p.T, origin="lower", vmin=0, vmax=1, cmap="Reds", aspect="auto")
+        for i in range(p.shape[0]):
+            for j in range(p.shape[1]):
+                ax.text(i, j, f"{int(ds[f'map_{name}_count'][i, j])}/{n}\n[{float(ds[f'map_{name}_lower'][i, j]):.2f}, "
+                              f"{float(ds[f'map_{name}_upper'][i, j]):.2f}]", ha="center", va="center", fontsize=6)
+        ax.set_xticks(range(p.shape[0]), [f"{h:g}" for h in ds.map_heading.values])
+        ax.set_yticks(range(p.shape[1]), [f"{v:g}" for v in ds.map_speed.values])
+        ax.set_xlabel("wave heading off the stern [°] (0 following)")
+        ax.set_ylabel("speed [kn]")
+        ax.set_title(f"P({name} in {ds.attrs['map_duration']:g} s)")
+        fig.colorbar(im, ax=ax)
+    fig.suptitle(f"{ds.attrs['ship']}, {ds.attrs['map_loading']} loading, {ds.attrs['map_sea']}: {n} records per cell, "
+                 f"{ds.attrs['map_interval']} {100 * (1 - ds.attrs['map_alpha']):g} % intervals")
+    atomic_savefig(fig, path)
+    plt.close(fig)

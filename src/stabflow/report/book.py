@@ -322,9 +322,20 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
              "surge": float(d.surf_riding_surge_only[i]), "six": float(d.surf_riding_six_dof[i])}
             for i in range(d.sizes.get("surf_case", 0))]
     figs = _optional_figures(results, figdir, f"broaching/{ship}_{{}}.png",
-                             tuple(f"motions_{lo}" for lo in d.loading.values) + ("strip", "manoeuvres"))
+                             tuple(f"motions_{lo}" for lo in d.loading.values) + ("strip", "manoeuvres", "map"))
     figures = {"motions": [{"loading": str(lo), "file": figs[f"motions_{lo}"]} for lo in d.loading.values],
-               "strip": figs["strip"], "manoeuvres": figs["manoeuvres"]}
+               "strip": figs["strip"], "manoeuvres": figs["manoeuvres"], "map": figs["map"]}
+    pmap = None
+    if "map_heading" in d.dims:
+        mrows = [{"heading": float(h), "speed": float(v),
+                  **{f"{t}{x}": (int if t == "k" else float)(d[f"map_{name}_{q}"].sel(map_heading=h, map_speed=v))
+                     for name, x in (("capsize", "c"), ("broach", "b"))
+                     for t, q in (("k", "count"), ("p", "probability"), ("l", "lower"), ("u", "upper"))}}
+                 for h in d.map_heading.values for v in d.map_speed.values]
+        pmap = {"rows": mrows, "loading": d.attrs["map_loading"], "kg": float(d.attrs["map_kg"]),
+                "sea": d.attrs["map_sea"], "records": int(d.attrs["map_records"]),
+                "duration": float(d.attrs["map_duration"]), "interval": d.attrs["map_interval"],
+                "level": 100 * (1 - float(d.attrs["map_alpha"]))}
     from stabflow.config import load_ship
 
     sh = load_ship(Path(config.get("ships_dir", "config/ships")) / f"{ship}.yaml")
@@ -335,7 +346,7 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                    if given else "") + "Clarke, Gedling & Hine (1983)"
     return _render("broaching.md.j2", ship=ship, a=config["broaching"], rows=rows, foils=foils, derivatives=derivatives,
                    man={"rows": man_rows, "length": L, "b_l": float(d.attrs.get("manoeuvre_breadth", np.nan)) / L},
-                   surf=surf, figures=figures, strip_case=d.attrs.get("strip_case", ""),
+                   surf=surf, figures=figures, pmap=pmap, strip_case=d.attrs.get("strip_case", ""),
                    strip_loading=d.attrs.get("strip_loading", ""))
 
 
