@@ -195,18 +195,24 @@ def test_resistance_and_thrust_hold_the_commanded_speed(trawler):
 
 def test_rudder_turns_the_ship_to_starboard_and_the_autopilot_recovers_a_step(trawler):
     """Positive rudder (trailing edge to starboard) turns to starboard (yaw decreasing); the PD
-    autopilot of paper 004 takes a 10 degree heading change monotonically for the first 30 s
-    (its derivative gain of 20 s overdamps the loop), overshoots by less than 0.05 degree (the
-    servo lag; measured 0.03) and settles within 0.1 degree."""
+    autopilot of paper 004 takes a 10 degree course change with no more overshoot than the linear
+    theory of the same equations with the same gains (measured 0.002 degree against 0.021: the slew
+    limit damps the large step) and settles within 0.1 degree; for a 1 degree change, within the
+    linear theory's 5 % (both are linear there)."""
+    from stabflow.dynamics.manoeuvring import linearised_course_change
+
     model = six_dof(trawler, autopilot=Autopilot(mode="fixed", rudder_deg=10.0))
     ds = simulate_six_dof(model, ([], [], []), 20.0, 0.05)
     assert float(ds["yaw"][-1]) < -5.0
-    model = six_dof(trawler, autopilot=Autopilot(heading_deg=10.0))
-    ds = simulate_six_dof(model, ([], [], []), 180.0, 0.05)
-    yaw = ds["yaw"].values
-    assert yaw.max() <= 10.0 + 0.05
-    assert abs(yaw[-1] - 10.0) < 0.1
-    assert np.all(np.diff(yaw[: int(30 / 0.05)]) >= -1e-9)
+    for step, tol in ((10.0, None), (1.0, 0.05)):
+        model = six_dof(trawler, autopilot=Autopilot(heading_deg=step))
+        ds = simulate_six_dof(model, ([], [], []), 180.0, 0.05)
+        yaw = ds["yaw"].values
+        _, lin = linearised_course_change(model, step, 180.0)
+        assert yaw.max() - step <= max(lin.max() - step, 0.0) + 1e-3 * step
+        assert abs(yaw[-1] - step) < 0.01 * step
+        if tol:
+            np.testing.assert_allclose(yaw, lin, atol=tol * step)
 
 
 def test_non_positive_inertia_is_an_error(trawler):

@@ -18,7 +18,8 @@ from stabflow.config import Ship
 from stabflow.constants import G, KNOT
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics.manoeuvres import record_events
-from stabflow.dynamics.manoeuvring import Autopilot, Foil, Manoeuvring, SixDof, build_six_dof, simulate_six_dof
+from stabflow.dynamics.manoeuvring import (Autopilot, Foil, Manoeuvring, SixDof, build_six_dof,
+                                           linearised_course_change, simulate_six_dof)
 from stabflow.dynamics.model import coefficients
 from stabflow.dynamics.roll_damping import particulars, section_parameters
 from stabflow.dynamics.tables import section_tables
@@ -193,6 +194,13 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
     step = simulate_six_dof(replace(model, m=_steer(model, "autopilot", 0.0, heading=10.0)), calm, mc["step_s"], dt)
     out["autopilot_step_overshoot"] = float(step["yaw"].max()) - 10.0
     out["autopilot_step_final"] = float(step["yaw"][-1])
+    _, lin = linearised_course_change(model, 10.0, mc["step_s"])
+    out["autopilot_step_overshoot_linear"] = float(lin.max()) - 10.0
+    rows.append(Check("autopilot, 10° course change in calm water: overshoot of the 6-DOF record beyond the "
+                      "linearised closed loop's (same gains, continuous servo)",
+                      out["autopilot_step_overshoot"] - max(out["autopilot_step_overshoot_linear"], 0.0), np.nan,
+                      "degree", f"linear theory of the same equations: overshoot "
+                      f"{out['autopilot_step_overshoot_linear']:.4f}°", kind="consistency", upper=0.01))
     h = float(cfg["regular"]["height"])
     lams = sorted(float(x) for x in cfg["regular"]["wavelengths"])[-2:]
     thr = np.full((len(lams), 3), np.nan)

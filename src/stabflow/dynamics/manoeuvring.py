@@ -381,3 +381,44 @@ def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -
                     heading_deg=model.heading_deg, course_deg=float(np.degrees(model.m[K6.M_PSID])),
                     max_rudder_deg=float(np.degrees(model.m[K6.M_MAX])))
     return annotate(ds)
+
+
+def linearised_course_change(model: SixDof, step_deg: float, duration: float, eps: float = 1e-6):
+    """Heading response [degree] to a course change of ``step_deg`` in calm water by the linear theory of
+    the same equations: the 6-DOF right-hand side differentiated about the straight run (central
+    differences in q, q' and the rudder angle), closed by the autopilot of paper 004 eq 30 with the
+    servo of eq 31 as a continuous first-order lag (no slew or angle limit). Returns (t [s], yaw [degree])."""
+    from scipy.integrate import solve_ivp
+
+    args = kernel_args(model.sec, model.tables)
+    m = model.m.copy()
+    m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = 0.0, 1.0, 1.0
+    line = np.zeros((2, 3))
+    nst = len(model.sec.x)
+    scratch = (np.zeros(6), np.zeros((nst, 2)), np.zeros((nst, 5)), np.zeros((6, 6)), np.zeros(6))
+
+    def rhs(s, delta):
+        ds = np.zeros(K6.N_STATE6)
+        K6._rhs6(*args, model.p, m, model.foils, model.strips, line, s, delta, ds, *scratch)
+        return ds[:12]
+
+    s0 = model.s0
+    A = np.zeros((12, 12))
+    for j in range(12):
+        sp, sm = s0.copy(), s0.copy()
+        sp[j] += eps
+        sm[j] -= eps
+        A[:, j] = (rhs(sp, 0.0) - rhs(sm, 0.0)) / (2 * eps)
+    B = (rhs(s0, eps) - rhs(s0, -eps)) / (2 * eps)
+    ga, gb, tau = m[K6.M_GA], m[K6.M_GB], m[K6.M_TAU]
+    M = np.zeros((13, 13))
+    M[:12, :12] = A
+    M[:12, 12] = B
+    M[12, K.S_YAW] = ga / tau
+    M[12, K.S_RATE + K.S_YAW] = gb / tau
+    M[12, 12] = -1.0 / tau
+    c = np.zeros(13)
+    c[12] = -ga * np.radians(step_deg) / tau
+    t = np.linspace(0.0, duration, int(duration / 0.05) + 1)
+    sol = solve_ivp(lambda _, x: M @ x + c, (0.0, duration), np.zeros(13), t_eval=t, rtol=1e-9, atol=1e-12)
+    return sol.t, np.degrees(sol.y[K.S_YAW])
