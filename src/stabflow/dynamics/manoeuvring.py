@@ -383,23 +383,18 @@ def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -
     return annotate(ds)
 
 
-def linearised_course_change(model: SixDof, step_deg: float, duration: float, eps: float = 1e-6):
-    """Heading response [degree] to a course change of ``step_deg`` in calm water by the linear theory of
-    the same equations: the 6-DOF right-hand side differentiated about the straight run (central
-    differences in q, q' and the rudder angle), closed by the autopilot of paper 004 eq 30 with the
-    servo of eq 31 as a continuous first-order lag (no slew or angle limit). Returns (t [s], yaw [degree])."""
-    from scipy.integrate import solve_ivp
-
+def _linear_system(model: SixDof, eps: float = 1e-6):
+    """(A (12, 12), B (12,), rhs) of the 6-DOF right-hand side about the calm-water straight run:
+    central differences in (q, q') and the rudder angle; ``rhs(s, delta, line)`` evaluates it."""
     args = kernel_args(model.sec, model.tables)
     m = model.m.copy()
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = 0.0, 1.0, 1.0
-    line = np.zeros((2, 3))
     nst = len(model.sec.x)
     scratch = (np.zeros(6), np.zeros((nst, 2)), np.zeros((nst, 5)), np.zeros((6, 6)), np.zeros(6))
 
-    def rhs(s, delta):
+    def rhs(s, delta, line=np.zeros((2, 3)), mm=m):
         ds = np.zeros(K6.N_STATE6)
-        K6._rhs6(*args, model.p, m, model.foils, model.strips, line, s, delta, ds, *scratch)
+        K6._rhs6(*args, model.p, mm, model.foils, model.strips, line, s, delta, ds, *scratch)
         return ds[:12]
 
     s0 = model.s0
@@ -410,15 +405,77 @@ def linearised_course_change(model: SixDof, step_deg: float, duration: float, ep
         sm[j] -= eps
         A[:, j] = (rhs(sp, 0.0) - rhs(sm, 0.0)) / (2 * eps)
     B = (rhs(s0, eps) - rhs(s0, -eps)) / (2 * eps)
-    ga, gb, tau = m[K6.M_GA], m[K6.M_GB], m[K6.M_TAU]
+    return A, B, rhs
+
+
+def _closed_loop(model: SixDof, A, B) -> np.ndarray:
+    """The linear state matrix (13, 13) of (q, q', delta) with the autopilot (eq 30) and the servo
+    (eq 31) as a continuous lag."""
+    ga, gb, tau = model.m[K6.M_GA], model.m[K6.M_GB], model.m[K6.M_TAU]
     M = np.zeros((13, 13))
     M[:12, :12] = A
     M[:12, 12] = B
     M[12, K.S_YAW] = ga / tau
     M[12, K.S_RATE + K.S_YAW] = gb / tau
     M[12, 12] = -1.0 / tau
+    return M
+
+
+def linearised_course_change(model: SixDof, step_deg: float, duration: float):
+    """Heading response [degree] to a course change of ``step_deg`` in calm water by the linear theory of
+    the same equations: the 6-DOF right-hand side differentiated about the straight run (central
+    differences in q, q' and the rudder angle), closed by the autopilot of paper 004 eq 30 with the
+    servo of eq 31 as a continuous first-order lag (no slew or angle limit). Returns (t [s], yaw [degree])."""
+    from scipy.integrate import solve_ivp
+
+    A, B, _ = _linear_system(model)
+    M = _closed_loop(model, A, B)
     c = np.zeros(13)
-    c[12] = -ga * np.radians(step_deg) / tau
+    c[12] = -model.m[K6.M_GA] * np.radians(step_deg) / model.m[K6.M_TAU]
     t = np.linspace(0.0, duration, int(duration / 0.05) + 1)
     sol = solve_ivp(lambda _, x: M @ x + c, (0.0, duration), np.zeros(13), t_eval=t, rtol=1e-9, atol=1e-12)
     return sol.t, np.degrees(sol.y[K.S_YAW])
+
+
+def linear_regular_response(model: SixDof, wavelength: float, amplitude: float = 1.0) -> np.ndarray:
+    """Complex amplitudes (6,) of (surge, sway, heave [m], roll, pitch, yaw [rad]) of the steady state in
+    a regular wave of ``wavelength`` [m] and ``amplitude`` [m], autopilot on, by the linear frequency-
+    domain solution of the same equations: (i w_e - M) X = F with M the closed loop (13 x 13) and F
+    the wave forcing per unit amplitude (the right-hand side's derivative in the wave amplitude at
+    two phases), so that x(t) = Re[X exp(i w_e t)] and the wave at G's station is
+    a cos(k xi_G - w_e t)."""
+    A, B, rhs = _linear_system(model)
+    M = _closed_loop(model, A, B)
+    k = 2 * np.pi / wavelength
+    w = np.sqrt(float(model.p[K.P_G]) * k)
+    we = w - k * model.speed * np.cos(np.radians(model.heading_deg))
+    xi_g = float(model.p[K.P_XG]) * np.cos(np.radians(model.heading_deg))
+    eps = 1e-3
+    f = []
+    for t in (0.0, 0.5 * np.pi / we):
+        lines = []
+        for a in (eps, -eps):
+            tab, _, _, _ = wave_line(model, (np.array([a]), np.array([w]), np.array([-k * xi_g])), t, 0, 1.0, 0.0, 0.0)
+            lines.append(np.ascontiguousarray(tab[0]))
+        mm = model.m.copy()
+        mm[K6.M_XI0], mm[K6.M_DXI], mm[K6.M_WRAP] = 0.0, wavelength / 32, 32
+        f.append((rhs(model.s0, 0.0, lines[0], mm) - rhs(model.s0, 0.0, lines[1], mm)) / (2 * eps))
+    # forcing f_c cos(w_e t) + f_s sin(w_e t) = Re[(f_c - i f_s) exp(i w_e t)]
+    F = np.zeros(13, complex)
+    F[:12] = f[0] - 1j * f[1]
+    X = np.linalg.solve(1j * we * np.eye(13) - M, F * amplitude)
+    return X[:6]
+
+
+def first_harmonic(ds: xr.Dataset, omega: float, start: float) -> dict:
+    """Amplitudes of the first harmonic at ``omega`` [rad/s] of each motion from ``start`` [s] on
+    (least squares with a mean and a linear trend): surge, sway, heave [m], roll, pitch, yaw [degree]."""
+    t = ds["time"].values
+    sel = t >= start
+    tt = t[sel]
+    G_ = np.column_stack([np.ones_like(tt), tt - tt.mean(), np.cos(omega * tt), np.sin(omega * tt)])
+    out = {}
+    for v in ("surge", "sway", "heave", "roll", "pitch", "yaw"):
+        c, *_ = np.linalg.lstsq(G_, ds[v].values[sel], rcond=None)
+        out[v] = float(np.hypot(c[2], c[3]))
+    return out
