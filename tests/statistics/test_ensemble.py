@@ -81,3 +81,31 @@ def test_record_regenerates_and_restarts_bit_identically(model):
     n0 = 300
     again, last2 = simulate_record(model, 4, s_start=out[n0], n_start=n0)
     np.testing.assert_array_equal(again[n0: last2 + 1], out[n0: last + 1])
+
+
+def test_six_dof_condition_records_regenerate_and_block_splittime():
+    """A dof: 6 condition simulates with the 6-DOF model; a record regenerated alone gives the same
+    statistics (bit-identical); split-time refuses it with a clear error."""
+    import tempfile
+
+    import yaml
+
+    from stabflow import StabflowError
+    from stabflow.config import load_pipeline, load_ship
+    from stabflow.statistics.ensemble import build_model, merge, run_shard
+    from stabflow.statistics.splittime import analyse
+
+    d = {"ships": ["trawler"], "ensembles": [{"name": "sq6", "ship": "trawler", "sea": {"spectrum": "pierson_moskowitz",
+         "hs": 3.1, "n_components": 60}, "speed_kn": 10.0, "heading_deg": 45.0, "dof": 6, "dt": 0.1, "duration": 120.0,
+         "records": 2, "samples": 0, "stations": 21}]}
+    with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as f:
+        yaml.safe_dump(d, f)
+    cond = dict(load_pipeline(f.name)["ensembles"][0], name="trawler_sq6")
+    model = build_model(load_ship(ROOT / "config" / "ships" / "trawler.yaml"), cond)
+    assert model.six is not None
+    both = merge([run_shard(model, range(2), progress=False)])
+    alone = merge([run_shard(model, [1], progress=False)])
+    assert both.attrs["dof"] == 6
+    np.testing.assert_array_equal(both["moment_sums"].sel(record=[1]).values, alone["moment_sums"].values)
+    with pytest.raises(StabflowError, match="6-DOF"):
+        analyse(model, both, {})

@@ -25,6 +25,10 @@ for _step in ("extremes", "splittime"):
             raise ValueError(f"config: {_step}: conditions: {_key!r} is not an ensemble (have {sorted(ENSEMBLES)})")
 if "broaching" in config and config["broaching"]["ship"] not in SHIPS:
     raise ValueError(f"config: broaching: ship {config['broaching']['ship']!r} is not in ships")
+for _key in config["splittime"]["conditions"]:
+    if int(ENSEMBLES[_key].get("dof", 3)) != 3:
+        raise ValueError(f"config: splittime: conditions: {_key!r} is a 6-DOF condition: split-time runs on 3-DOF "
+                         "conditions only (its perturbed runs use the 3-DOF kernel)")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")

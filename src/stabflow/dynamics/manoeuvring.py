@@ -320,6 +320,16 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
     [degree], body surge and sway velocities ``u``, ``v`` [m/s], yaw rate [degree/s]; attributes
     ``status`` (0 ok, 1 capsized).
     """
+    states, _, status = run_six_dof(model, waves, duration, dt, phi_cap_deg=phi_cap_deg, s0=s0,
+                                    points_per_wavelength=points_per_wavelength, ramp_s=ramp_s, chunk_s=chunk_s,
+                                    dtype=dtype)
+    return six_dof_dataset(model, states, dt, status)
+
+
+def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg: float = 90.0, s0=None,
+                points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 20.0, dtype=np.float32):
+    """States (n + 1, N_STATE6) of one 6-DOF record, the last step done n and the status (0 ok, 1
+    capsized); the arguments as :func:`simulate_six_dof`."""
     nsteps = int(round(duration / dt))
     out = np.empty((nsteps + 1, K6.N_STATE6))
     out[0] = model.s0 if s0 is None else np.asarray(s0, float)
@@ -353,7 +363,8 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
             reach *= 2.0
             status = K6.OK
         n0 += done
-    return six_dof_dataset(model, out[:n0 + 1], dt, status)
+    return out[:n0 + 1], n0, status
+
 
 
 def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -> xr.Dataset:

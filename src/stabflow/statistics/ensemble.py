@@ -54,6 +54,8 @@ class Model:
     s0: np.ndarray
     depth: np.ndarray | None
     roll_period: float
+    #: the 6-DOF inputs (``dof: 6`` conditions, :mod:`stabflow.dynamics.manoeuvring`), None for 3-DOF
+    six: object = None
 
     @property
     def dt(self) -> float:
@@ -85,8 +87,15 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
     depth = section_depths(sec, h0, th0) if cond.get("dphi_dzdt", False) else None
     tables = section_tables(sec, int(cond.get("table_angles", 181)), int(cond.get("table_levels", 101)))
     p = parameters(co, s.rho, float(st["lcg"]), float(st["kg"]), float(cond["heading_deg"]))
+    six = None
+    if int(cond.get("dof", 3)) == 6:
+        from stabflow.dynamics.broaching import manoeuvring_from_ship
+        from stabflow.dynamics.manoeuvring import build_six_dof
+
+        six = build_six_dof(sec, st, co, s.rho, float(cond["heading_deg"]), float(cond["speed_kn"]) * KNOT,
+                            manoeuvring_from_ship(s, sec, st), tables=tables)
     return Model(s, cond, Seaway.from_config(cond["sea"]), sec, st, tables, p, initial_state(sec, st), depth,
-                 co.natural_period("roll"))
+                 co.natural_period("roll"), six)
 
 
 def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
@@ -182,6 +191,25 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
     recs = list(records)
     bar = tqdm(total=len(recs), desc=f"{model.ship.name} records {recs[0] if recs else 0}-", disable=not progress, mininterval=10,
                unit="rec")
+    if model.six is not None:
+        # 6-DOF: one record at a time (the wave is tabulated around the ship as it moves)
+        from stabflow.dynamics.manoeuvring import run_six_dof
+
+        t_mid = np.arange(model.nsteps + 1) * model.dt
+        for r in recs:
+            amp, w, ph = model.sea.components(cond["seed"], r)
+            states, last, _ = run_six_dof(model.six, (amp, w, ph), model.nsteps * model.dt, model.dt)
+            out = np.zeros((model.nsteps + 1, N_STATE))
+            out[:last + 1] = states[:, :N_STATE]
+            # wave elevation at midships on the mean track (the spectra's reference series)
+            wave_mid = station_wave_table(amp, w, ph, model.sec.x[[model.mid_station]], cond["heading_deg"], model.speed,
+                                          t_mid)[:, 0, 0]
+            per.append(record_statistics(model, r, out, int(last), wave_mid))
+            if r < cond["samples"]:
+                samples[r] = (out, int(last), wave_mid)
+            bar.update()
+        bar.close()
+        return shard_dataset(model, recs, per, samples, edges)
     for b0 in range(0, len(recs), BATCH):
         batch = recs[b0: b0 + BATCH]
         tabs = np.stack([wave_table(model, r) for r in batch])
@@ -268,6 +296,7 @@ def condition_attrs(model: Model) -> dict:
             "discretisation": model.sea.method, "randomise": int(model.sea.randomise),
             "speed_kn": float(c["speed_kn"]), "heading_deg": float(c["heading_deg"]), "duration": float(c["duration"]),
             "dt": model.dt, "seed": int(c["seed"]), "stations": len(model.sec.x), "kg": float(model.st["kg"]),
+            "dof": int(c.get("dof", 3)),
             "gm": float(model.st["gm"]), "roll_period": model.roll_period}
 
 

@@ -47,6 +47,7 @@ from scipy import stats
 
 from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
 from stabflow.dynamics.tables import kernel_args
+from stabflow import StabflowError
 from stabflow.statistics.ensemble import Model, simulate_record, wave_table
 from stabflow.waves.synthesis import station_wave_table
 from stabflow.statistics.extremes import decluster
@@ -290,6 +291,9 @@ def critical_perturbations(model: Model, records, steps, sides, levels, follow: 
 def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress: bool = False) -> xr.Dataset:
     """Split-time capsize rate from the first ``sample_hours`` of the ensemble at each threshold,
     against the brute-force rate of the other records."""
+    if model.six is not None:
+        raise StabflowError(f"splittime: condition {ens.attrs.get('condition', '?')!r} is 6-DOF: split-time runs on "
+                            "3-DOF conditions only (its perturbed runs use the 3-DOF kernel)")
     dt = float(ens.attrs["dt"])
     duration = float(ens.attrs["duration"])
     tau = decorrelation_time(ens["roll_autocorrelation"])
