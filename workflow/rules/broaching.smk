@@ -1,7 +1,10 @@
 rule broaching:
     """Paper 004's stern-quartering cases with the 6-DOF model, calm-water manoeuvres, surf-riding thresholds."""
+    wildcard_constraints:
+        ship=broaching_ship(),
     input:
         ship=ship_yaml,
+        hull=hull_source,
     output:
         nc=f"{RESULTS}/broaching/{{ship}}.nc",
         validation=f"{RESULTS}/validation/{{ship}}_manoeuvring.nc",

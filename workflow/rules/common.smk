@@ -137,6 +137,11 @@ def broaching_outputs(which="nc"):
             "figures": [f"{RESULTS}/broaching/{s}_{f}.png" for f in BROACHING_FIGURES]}[which]
 
 
+def broaching_ship():
+    """The ship of the broaching step (the rule's {ship} wildcard is constrained to it)."""
+    return config["broaching"]["ship"] if "broaching" in config else "none"
+
+
 def broaching_figure_names():
     """Figure stems of the broaching step: motions per loading, the snapshot strip, the manoeuvres."""
     if "broaching" not in config:

@@ -194,10 +194,10 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f):
     vm = v - p[P_XG] * r
     fy = u * (m[M_YV] * vm + m[M_YR] * r)
     nz = u * (m[M_NV] * vm + m[M_NR] * r) - p[P_XG] * fy
-    # the quadratic surge term of the added mass (-C_A nu, Fossen), which the linear derivatives
-    # cannot hold: (A22 - A11) v r + A26 r^2 beyond the A11 u' - A11 v r of the inertia term
+    # the surge row of the added mass's -C_A nu (Fossen): (A22 v + A26 r) r, quadratic, so not in
+    # the linear derivatives (the inertia term is -A_b d(u, v, r)/dt, ``_horizontal_added_mass``)
     ab = m[M_AB:M_AB + 9]
-    fx += (ab[4] - ab[0]) * v * r + 0.5 * (ab[5] + ab[7]) * r * r
+    fx += (ab[4] * v + 0.5 * (ab[5] + ab[7]) * r) * r
     # cross-flow drag: each strip's lateral velocity v + r x meets the drag of a 2-D section
     for i in range(strips.shape[0]):
         vl = v + r * strips[i, 0]

@@ -185,27 +185,55 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
         for k, v in tc.items():
             out[f"turning_{int(helm)}_{k}"] = v
         tracks[f"turning circle, rudder {helm:g}°"] = trajectory(ds)
+    from stabflow.dynamics import _kernels_6dof as K6
+    from stabflow.dynamics.manoeuvring import _linear_system
+
+    rudder = bool(np.any(model.foils[:, K6.F_RUDDER] != 0.0)) if len(model.foils) else False
+    no_rudder = "the ship's manoeuvring section has no rudder foil: the autopilot cannot steer"
+    # open-loop directional stability: the sway-yaw block (y', psi, psi') of the linear system
+    A, _, _ = _linear_system(model)
+    idx = [K.S_RATE + K.S_Y, K.S_YAW, K.S_RATE + K.S_YAW]
+    lam_max = float(np.max(np.linalg.eigvals(A[np.ix_(idx, idx)]).real))
+    out["sway_yaw_eigenvalue"] = lam_max
     for z in (10.0, 20.0):
         ds = simulate_six_dof(replace(model, m=_steer(model, "zigzag", z, z)), calm, mc["zigzag_s"], dt)
         first, second = zigzag_overshoots(ds, z)
         out[f"zigzag_{int(z)}_first_overshoot"] = first
         out[f"zigzag_{int(z)}_second_overshoot"] = second
         zigzags[f"{z:g}/{z:g}"] = (ds["time"].values, ds["yaw"].values, ds["rudder"].values)
-    from stabflow.dynamics import _kernels_6dof as K6
-
-    rudder = bool(np.any(model.foils[:, K6.F_RUDDER] != 0.0)) if len(model.foils) else False
-    no_rudder = "the ship's manoeuvring section has no rudder foil: the autopilot cannot steer"
+        name = f"zig-zag {z:g}°/{z:g}° in calm water completes (both overshoot angles measured in {mc['zigzag_s']:g} s)"
+        ref = "the manoeuvre's definition (IMO MSC.137(76) 4.2.6)"
+        if not rudder:
+            rows.append(Check.not_applicable(name, no_rudder, "-", ref))
+        elif np.isfinite(first) and np.isfinite(second):
+            rows.append(Check(name, 1.0, np.nan, "-", ref, lower=1.0))
+        else:
+            why = (f"the heading did not come back after the helm reversal: open-loop sway-yaw eigenvalue "
+                   f"{lam_max:+.3f} 1/s ({'directionally unstable' if lam_max > 0 else 'stable'} with these hull "
+                   "derivatives and foils)")
+            rows.append(Check.failed(name, why, "-", ref, lower=1.0))
     step = simulate_six_dof(replace(model, m=_steer(model, "autopilot", 0.0, heading=10.0)), calm, mc["step_s"], dt)
     out["autopilot_step_overshoot"] = float(step["yaw"].max()) - 10.0
     out["autopilot_step_final"] = float(step["yaw"][-1])
     _, lin = linearised_course_change(model, 10.0, mc["step_s"])
     out["autopilot_step_overshoot_linear"] = float(lin.max()) - 10.0
-    name = ("autopilot, 10° course change in calm water: overshoot of the 6-DOF record beyond the linearised "
-            "closed loop's (same gains, continuous servo)")
-    ref = f"linear theory of the same equations: overshoot {out['autopilot_step_overshoot_linear']:.4f}°"
-    rows.append(Check(name, out["autopilot_step_overshoot"] - max(out["autopilot_step_overshoot_linear"], 0.0),
-                      np.nan, "degree", ref, kind="consistency", upper=0.01) if rudder else
-                Check.not_applicable(name, no_rudder, "degree", ref, kind="consistency"))
+    small = simulate_six_dof(replace(model, m=_steer(model, "autopilot", 0.0, heading=1.0)), calm, mc["step_s"], dt)
+    _, lin1 = linearised_course_change(model, 1.0, mc["step_s"])
+    n1 = min(len(lin1), small.sizes["time"])
+    out["autopilot_1deg_deviation"] = float(np.max(np.abs(small["yaw"].values[:n1] - lin1[:n1])))
+    rows_ap = [
+        ("autopilot, 1° course change in calm water (below the servo's slew limit): largest |yaw - linear theory| "
+         "/ step", out["autopilot_1deg_deviation"] / 1.0, dict(tolerance=0.05),
+         f"linear theory of the same equations (closed loop, continuous servo): overshoot {lin1.max() - 1.0:.4f}°"),
+        (f"autopilot, 10° course change in calm water: heading after {mc['step_s']:g} s / 10° - 1",
+         out["autopilot_step_final"] / 10.0 - 1.0, dict(tolerance=0.01), "the commanded course"),
+        ("autopilot, 10° course change: overshoot beyond the linear theory's (the slew limit only slows the turn)",
+         out["autopilot_step_overshoot"] - max(out["autopilot_step_overshoot_linear"], 0.0), dict(tolerance=0.01),
+         f"linear theory of the same equations: overshoot {out['autopilot_step_overshoot_linear']:.4f}°"),
+    ]
+    for name, value, band, ref in rows_ap:
+        rows.append(Check(name, value, unit="-" if "/" in name else "degree", reference=ref, kind="consistency", **band)
+                    if rudder else Check.not_applicable(name, no_rudder, "-", ref, kind="consistency"))
     # small regular waves (H / lambda = 1/2000) against the linear frequency-domain solution of the
     # same equations, autopilot on; dt small because eq 30's derivative and the servo step are
     # first order in dt (measured: roll -11 % at dt 0.05 s, -2.7 % at 0.0125 s, heading 120 deg)
@@ -245,7 +273,14 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
                                                  "Melnikov's method on the surge equation"))
             continue
         c = np.sqrt(G * lam / (2 * np.pi))
-        u_m = melnikov_threshold(model, lam, h)
+        tag = f"surf-riding threshold, regular following wave lambda {lam:g} m (lambda/L {lam / L:.2f}), H {h:g} m"
+        try:
+            u_m = melnikov_threshold(model, lam, h)
+        except ValueError as e:
+            for what in ("6-DOF with only surge free (the surge equation in time)", "full 6-DOF"):
+                rows.append(Check.failed(f"{tag}: {what} / Melnikov - 1", f"Melnikov's threshold not found: {e}", "-",
+                                         "Melnikov's method on the surge equation", kind="consistency", tolerance=0.05))
+            continue
         thr[i, 0] = u_m
         for j, flags in ((1, (1, 0, 0, 0, 0, 0)), (2, (1, 1, 1, 1, 1, 1))):
             p = model.p.copy()
@@ -255,15 +290,14 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
             except ValueError as e:
                 thr[i, j] = np.nan
                 out[f"surf_riding_{lam:g}_{j}_error"] = str(e)
-        tag = f"surf-riding threshold, regular following wave lambda {lam:g} m (lambda/L {lam / L:.2f}), H {h:g} m"
         ref = f"Melnikov's method on the surge equation: U_cr {u_m:.3f} m/s"
         for j, what in ((1, "6-DOF with only surge free (the surge equation in time)"), (2, "full 6-DOF")):
             name = f"{tag}: {what} / Melnikov - 1"
             if np.isfinite(thr[i, j]):
-                rows.append(Check(name, thr[i, j] / u_m - 1.0, 0.05, "-", ref))
+                rows.append(Check(name, thr[i, j] / u_m - 1.0, 0.05, "-", ref, kind="consistency"))
             else:
                 rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
-                                         "-", ref, tolerance=0.05))
+                                         "-", ref, kind="consistency", tolerance=0.05))
     ds = xr.Dataset({k: ((), v) for k, v in out.items() if not isinstance(v, str)})
     ds["surf_riding_wavelength"] = ("surf_case", np.array(lams))
     ds["surf_riding_melnikov"] = ("surf_case", thr[:, 0])

@@ -82,7 +82,8 @@ def record_events(ds: xr.Dataset, *, broach_deg: float, celerity: float, surf_to
     t = ds["time"].values
     dt = float(ds.attrs["dt"])
     capsized = int(ds.attrs["status"] == K6.CAPSIZED)
-    dev = np.abs(ds["yaw"].values - float(ds.attrs.get("course_deg", 0.0)))
+    dev = ds["yaw"].values - float(ds.attrs.get("course_deg", 0.0))
+    dev = np.abs((dev + 180.0) % 360.0 - 180.0)  # wrapped: a ship that turned full circle is back on course
     at_stop = np.abs(ds["rudder"].values) >= float(ds.attrs.get("max_rudder_deg", 35.0)) - 1e-6
     b = np.nonzero((dev > broach_deg) & at_stop)[0]
     beta = np.radians(heading_deg)

@@ -453,8 +453,8 @@ def linear_regular_response(model: SixDof, wavelength: float, amplitude: float =
     a regular wave of ``wavelength`` [m] and ``amplitude`` [m], autopilot on, by the linear frequency-
     domain solution of the same equations: (i w_e - M) X = F with M the closed loop (13 x 13) and F
     the wave forcing per unit amplitude (the right-hand side's derivative in the wave amplitude at
-    two phases), so that x(t) = Re[X exp(i w_e t)] and the wave at G's station is
-    a cos(k xi_G - w_e t)."""
+    two phases), so that x(t) = Re[X exp(i w_e t)] for the wave a cos(k (xi - xi_G) - w_e t) (its
+    crest at G's station at t = 0)."""
     A, B, rhs = _linear_system(model)
     M = _closed_loop(model, A, B)
     k = 2 * np.pi / wavelength

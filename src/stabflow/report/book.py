@@ -345,7 +345,12 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
     derivatives = (f"given {', '.join(sorted(given))} ({mcfg['derivatives'].get('source', 'source not given')}), the rest "
                    if given else "") + "Clarke, Gedling & Hine (1983)"
     return _render("broaching.md.j2", ship=ship, a=config["broaching"], rows=rows, foils=foils, derivatives=derivatives,
-                   man={"rows": man_rows, "length": L, "b_l": float(d.attrs.get("manoeuvre_breadth", np.nan)) / L},
+                   man={"rows": man_rows, "length": L, "b_l": float(d.attrs.get("manoeuvre_breadth", np.nan)) / L,
+                        "form_factor": float(mcfg.get("form_factor", 0.0)), "ap": mcfg.get("autopilot", {}),
+                        "eig": float(d["sway_yaw_eigenvalue"]) if "sway_yaw_eigenvalue" in d else np.nan,
+                        "added_mass": {"capytaine": "Capytaine's zero-frequency limit of the hull mesh",
+                                       "clarke": "Clarke et al. (1983)"}.get(str(mcfg.get("added_mass", "capytaine")),
+                                                                             "given in the ship file")},
                    surf=surf, figures=figures, pmap=pmap, strip_case=d.attrs.get("strip_case", ""),
                    strip_loading=d.attrs.get("strip_loading", ""))
 
