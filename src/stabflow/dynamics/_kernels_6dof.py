@@ -170,19 +170,25 @@ def _foil_force(uf, vf, delta, rho, area, cla, stall, trail, ar, cn):
     return q * (-dy * cl - dx * cd) + e * cy, q * (dx * cl - dy * cd) - e * cx
 
 
+@njit(cache=True, inline="always")
+def _heading_velocities(m, s):
+    """(cos psi, sin psi, u, v): the surge and sway velocities of G in the heading frame, the frame
+    of q moving with the commanded speed along x."""
+    psi = s[S_YAW]
+    c = math.cos(psi)
+    sn = math.sin(psi)
+    xd = m[M_SPEED] + s[S_RATE + S_X]
+    yd = s[S_RATE + S_Y]
+    return c, sn, c * xd + sn * yd, -sn * xd + c * yd
+
+
 @njit(cache=True)
 def _manoeuvring_loads(p, m, foils, strips, s, delta, f):
     """Add resistance, thrust, hull manoeuvring forces (linear derivatives and cross-flow drag of
     the ``strips`` (nst, 2): x from G [m] and 1/2 rho T C_D dx [kg/m]) and foil forces to the loads
     ``f`` (6,) (force and moment about G in the heading frame)."""
     rho = p[P_RHO]
-    psi = s[S_YAW]
-    c = math.cos(psi)
-    sn = math.sin(psi)
-    xd = m[M_SPEED] + s[S_RATE + S_X]
-    yd = s[S_RATE + S_Y]
-    u = c * xd + sn * yd
-    v = -sn * xd + c * yd
+    c, sn, u, v = _heading_velocities(m, s)
     r = s[S_RATE + S_YAW]
     pr = s[S_RATE + S_ROLL]
     # resistance on the ITTC-57 line with the form factor, and the constant thrust
@@ -231,13 +237,7 @@ def _horizontal_added_mass(m, s, mq, r):
     Coriolis terms, Munk moment) linear in the velocities are part of the hull derivatives (measured
     on rotating arms and planar-motion mechanisms, Clarke et al. 1983) and are not added again; the
     quadratic surge term is added with the loads (``_manoeuvring_loads``)."""
-    psi = s[S_YAW]
-    c = math.cos(psi)
-    sn = math.sin(psi)
-    xd = m[M_SPEED] + s[S_RATE + S_X]
-    yd = s[S_RATE + S_Y]
-    u = c * xd + sn * yd
-    v = -sn * xd + c * yd
+    c, sn, u, v = _heading_velocities(m, s)
     rr = s[S_RATE + S_YAW]
     A = m[M_AB:M_AB + 9]
     # J rows: u <- (c, s, 0), v <- (-s, c, 0), r <- (0, 0, 1) over (x, y, psi)

@@ -34,16 +34,14 @@ from scipy import integrate, optimize
 from stabflow.constants import G
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics import _kernels_6dof as K6
-from stabflow.dynamics.manoeuvring import SixDof, simulate_six_dof
+from stabflow.dynamics.manoeuvring import SixDof, ittc57_friction, simulate_six_dof
 from stabflow.dynamics.tables import kernel_args
 
 
 def resistance(model: SixDof, u):
     """Calm-water resistance R(u) [N] of the 6-DOF model (ITTC-57 line with the form factor)."""
     u = np.asarray(u, float)
-    re = np.maximum(np.abs(u) * model.m[K6.M_LNU], 1e3)
-    cf = 0.075 / (np.log10(re) - 2.0) ** 2
-    return model.m[K6.M_RES] * cf * u * np.abs(u)
+    return model.m[K6.M_RES] * ittc57_friction(np.maximum(np.abs(u) * model.m[K6.M_LNU], 1e3)) * u * np.abs(u)
 
 
 def surge_force(model: SixDof, wavelength: float, height: float, n: int = 72) -> tuple[float, float]:
