@@ -138,3 +138,24 @@ def test_absolute_and_fraction_together_is_one_clear_error(ship_file):
     with pytest.raises(StabflowError) as e:
         load_ship(p)
     assert str(e.value) == f"{p}: dynamics.b44 and dynamics.roll_damping_linear: give one, not both"
+
+
+def test_step_overrides_per_condition():
+    """extremes / splittime overrides replace the section's settings for one condition only, and are
+    validated like the section (the error names <step>.overrides.<key>.<field>)."""
+    from stabflow.config import step_settings
+
+    cfg = load_pipeline(ROOT / "config" / "config.yaml")
+    st = cfg["splittime"]
+    for key in st["conditions"]:
+        s = step_settings(st, "splittime", key)
+        assert "conditions" not in s and "overrides" not in s
+        want = dict({k: v for k, v in st.items() if k not in ("conditions", "overrides")}, **st["overrides"].get(key, {}))
+        assert s == want
+    base = dict(st, overrides={"a_b": {"sample_hours": 5.0}})
+    assert step_settings(base, "splittime", "a_b")["sample_hours"] == 5.0
+    assert step_settings(base, "splittime", "c_d")["sample_hours"] == st["sample_hours"]
+    with pytest.raises(StabflowError, match=r"splittime\.overrides\.a_b\.sample_hours"):
+        step_settings(dict(st, overrides={"a_b": {"sample_hours": -1.0}}), "splittime", "a_b")
+    with pytest.raises(StabflowError, match=r"extremes\.overrides\.a_b: unknown setting\(s\) sample_hour"):
+        step_settings(dict(cfg["extremes"], overrides={"a_b": {"sample_hour": 5.0}}), "extremes", "a_b")

@@ -178,3 +178,21 @@ def load_ship(path: str | Path) -> Ship:
 def load_pipeline(path: str | Path) -> dict:
     """Load and validate the pipeline configuration (``config/config.yaml``)."""
     return validate(load_yaml(path), "config", path)
+
+
+def step_settings(cfg: dict, step: str, key: str) -> dict:
+    """The settings of pipeline section ``step`` (``extremes``, ``splittime``) for ensemble condition
+    ``key`` (``<ship>_<name>``): the section's ``overrides[key]`` over its settings, validated like the
+    section (a bad override raises ``StabflowError`` naming ``<step>.overrides.<key>``)."""
+    over = dict(cfg.get("overrides", {}).get(key, {}))
+    sch = schema("config")["properties"][step]
+    merged = {k: v for k, v in cfg.items() if k not in ("conditions", "overrides")}
+    merged.update(over)
+    bad = sorted(set(over) - set(sch["properties"]) | set(over) & {"conditions", "overrides"})
+    if bad:
+        raise StabflowError(f"config: {step}.overrides.{key}: unknown setting(s) {', '.join(bad)}")
+    err = next(iter(jsonschema.Draft202012Validator(sch).iter_errors(merged)), None)
+    if err is not None:
+        field = ".".join(str(p) for p in err.absolute_path)
+        raise StabflowError(f"config: {step}.overrides.{key}.{field}: {err.message}")
+    return merged

@@ -7,7 +7,7 @@ from __future__ import annotations
 import xarray as xr
 
 from stabflow import StabflowError
-from stabflow.config import load_ship
+from stabflow.config import load_ship, step_settings
 
 
 def _open_optional(path) -> xr.Dataset | None:
@@ -342,6 +342,7 @@ def run_extremes(ensemble_nc, cfg: dict, out_nc, fig_threshold=None, fig_rate=No
 
     with xr.open_dataset(ensemble_nc) as e:
         ens = e.load()
+    cfg = step_settings(cfg, "extremes", f"{ens.attrs['ship']}_{ens.attrs['condition']}")
     ds, extra = analyse(ens, cfg, progress=True)
     a = ens.attrs
     head = f"{a['condition']}: Hs {a['hs']:g} m, {a['speed_kn']:g} kn, heading {a['heading_deg']:g}°"
@@ -372,6 +373,7 @@ def run_splittime(ship_yaml, cond: dict, ensemble_nc, cfg: dict, out_nc, figures
     model = build_model(load_ship(ship_yaml), cond, hydro)
     with xr.open_dataset(ensemble_nc) as e:
         ens = e.load()
+    cfg = step_settings(cfg, "splittime", f"{ens.attrs['ship']}_{ens.attrs['condition']}")
     ds = analyse(model, ens, cfg, threads=threads, progress=True)
     if figures:
         a = ens.attrs

@@ -83,29 +83,75 @@ def test_record_regenerates_and_restarts_bit_identically(model):
     np.testing.assert_array_equal(again[n0: last2 + 1], out[n0: last + 1])
 
 
-def test_six_dof_condition_records_regenerate_and_block_splittime():
+def test_six_dof_condition_records_regenerate_and_run_splittime():
     """A dof: 6 condition simulates with the 6-DOF model; a record regenerated alone gives the same
-    statistics (bit-identical); split-time refuses it with a clear error."""
+    statistics (bit-identical). Split-time runs on it: the perturbation is applied at the grid state
+    just beyond the crossing, a restart from inside the record (the waves at t0 = n dt, the wave
+    table chunked differently) follows the record to 1e-3 deg over 20 s while a run offset by a wrong time does
+    not, and the bisection finds the critical perturbation between a surviving and a capsizing run."""
     import tempfile
 
     import yaml
 
-    from stabflow import StabflowError
     from stabflow.config import load_pipeline, load_ship
-    from stabflow.statistics.ensemble import build_model, merge, run_shard
-    from stabflow.statistics.splittime import analyse
+    from stabflow.dynamics._kernels import S_RATE, S_ROLL
+    from stabflow.dynamics._kernels_6dof import N_STATE6
+    from stabflow.dynamics.manoeuvring import run_six_dof
+    from stabflow.statistics.ensemble import build_model, merge, run_shard, simulate_record
+    from stabflow.statistics.splittime import analyse, crossing_state, perturbed_histories
 
     d = {"ships": ["trawler"], "ensembles": [{"name": "sq6", "ship": "trawler", "sea": {"spectrum": "pierson_moskowitz",
          "hs": 3.1, "n_components": 60}, "speed_kn": 10.0, "heading_deg": 45.0, "dof": 6, "dt": 0.1, "duration": 120.0,
-         "records": 2, "samples": 0, "stations": 21}]}
+         "records": 3, "samples": 0, "stations": 21, "thresholds_deg": [20.0, 30.0]}]}
     with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as f:
         yaml.safe_dump(d, f)
-    cond = dict(load_pipeline(f.name)["ensembles"][0], name="trawler_sq6")
+    pipe = load_pipeline(f.name)
+    cond = dict(pipe["ensembles"][0], name="sq6")
     model = build_model(load_ship(ROOT / "config" / "ships" / "trawler.yaml"), cond)
     assert model.six is not None
-    both = merge([run_shard(model, range(2), progress=False)])
+    both = merge([run_shard(model, range(3), progress=False)])
     alone = merge([run_shard(model, [1], progress=False)])
     assert both.attrs["dof"] == 6
     np.testing.assert_array_equal(both["moment_sums"].sel(record=[1]).values, alone["moment_sums"].values)
-    with pytest.raises(StabflowError, match="6-DOF"):
-        analyse(model, both, {})
+    # broaching per record, as the scenario's event detection finds it on the regenerated record
+    from stabflow.dynamics.manoeuvres import record_events
+    from stabflow.dynamics.manoeuvring import six_dof_dataset
+
+    assert int(both["broach_count"]) == int(both["broached"].sum())
+    np.testing.assert_array_equal(np.isfinite(both["broach_time"].values), both["broached"].values == 1)
+    st0, n, status = run_six_dof(model.six, model.sea.components(cond["seed"], 2), 120.0, model.dt)
+    ev = record_events(six_dof_dataset(model.six, st0, model.dt, status), broach_deg=30.0, celerity=1.0,
+                       surf_tolerance=0.05, surf_min_s=10.0, heading_deg=45.0)
+    assert int(both["broached"].sel(record=2)) == ev["broach"]
+    # the first up-crossing of 20 deg in record 0: the 6-DOF crossing state is the grid state after it
+    states, last = simulate_record(model, 0)
+    assert states.shape[1] == N_STATE6
+    m = (both["crossing_record"] == 0) & (both["crossing_threshold"] == 0) & (both["crossing_side"] == 1)
+    n0 = int(both["crossing_step"].values[m][0])
+    tc, sc = crossing_state(model, None, states, n0, np.radians(20.0))
+    assert tc == pytest.approx((n0 + 1) * model.dt) and np.degrees(sc[S_ROLL]) >= 20.0 > np.degrees(states[n0, S_ROLL])
+    # restart inside the record with the waves at t0 = (n0 + 1) dt
+    comps = model.sea.components(cond["seed"], 0)
+    k = min(200, last - n0 - 1)
+    again, _, _ = run_six_dof(model.six, comps, k * model.dt, model.dt, s0=sc, t0=tc)
+    roll = np.degrees(states[n0 + 1: n0 + 1 + k + 1, S_ROLL])
+    assert np.max(np.abs(np.degrees(again[:, S_ROLL]) - roll)) < 1e-3  # float32 tables on other chunks: 3e-5 seen
+    wrong, _, _ = run_six_dof(model.six, comps, k * model.dt, model.dt, s0=sc, t0=tc + 1.0)
+    assert np.max(np.abs(np.degrees(wrong[:, S_ROLL]) - roll)) > 0.5
+    # split-time on the 6-DOF ensemble: every crossing gets a bracket or a critical perturbation
+    cfg = dict(pipe["splittime"], sample_hours=2 * 120.0 / 3600, thresholds_deg=[20.0], max_perturbation=120.0,
+               min_clusters=3)
+    st = analyse(model, both, cfg)
+    delta = st["critical_perturbation"].values
+    assert int(st["crossings"][0]) > 0 and np.isfinite(delta).any()
+    steps = st["crossing_time"].values / model.dt
+    np.testing.assert_allclose(steps, np.round(steps), atol=1e-9)  # on the time grid
+    # the critical perturbation capsizes (or keeps the capsize) and 0.8 of it does not, where finite and positive
+    j = int(np.nonzero(np.isfinite(delta) & (delta > 1.0))[0][0])
+    rec, side = int(st["crossing_record"].values[j]), int(st["crossing_side"].values[j])
+    step = int(round(float(st["crossing_time"].values[j]) / model.dt)) - 1
+    window = int(st.attrs["window_steps"])
+    _, base, (below, at) = perturbed_histories(model, rec, step, side, [0.8 * delta[j], delta[j]], window, 20.0)
+    assert np.nanmax(np.abs(at)) > 90.0 and np.nanmax(np.abs(below)) <= 90.0
+    assert abs(float(st["crossing_roll_rate"].values[j]) - abs(np.degrees(
+        simulate_record(model, rec)[0][step + 1, S_RATE + S_ROLL]))) < 1e-9

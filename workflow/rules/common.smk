@@ -3,7 +3,7 @@ from pathlib import Path
 
 from snakemake.utils import validate
 
-from stabflow.config import coerce_numbers, load_ship, schema
+from stabflow.config import coerce_numbers, load_ship, schema, step_settings
 
 
 # numbers typed as 8.6e6 reach us as strings from Snakemake's YAML 1.1 loader: read them as numbers
@@ -23,12 +23,12 @@ for _step in ("extremes", "splittime"):
     for _key in config[_step]["conditions"]:
         if _key not in ENSEMBLES:
             raise ValueError(f"config: {_step}: conditions: {_key!r} is not an ensemble (have {sorted(ENSEMBLES)})")
+    for _key in config[_step]["overrides"]:
+        if _key not in config[_step]["conditions"]:
+            raise ValueError(f"config: {_step}: overrides: {_key!r} is not among {_step}.conditions")
+        step_settings(config[_step], _step, _key)
 if "broaching" in config and config["broaching"]["ship"] not in SHIPS:
     raise ValueError(f"config: broaching: ship {config['broaching']['ship']!r} is not in ships")
-for _key in config["splittime"]["conditions"]:
-    if int(ENSEMBLES[_key].get("dof", 3)) != 3:
-        raise ValueError(f"config: splittime: conditions: {_key!r} is a 6-DOF condition: split-time runs on 3-DOF "
-                         "conditions only (its perturbed runs use the 3-DOF kernel)")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")

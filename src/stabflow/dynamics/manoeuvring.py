@@ -327,9 +327,11 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
 
 
 def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg: float = 90.0, s0=None,
-                points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 20.0, dtype=np.float32):
+                points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 20.0, dtype=np.float32,
+                t0: float = 0.0):
     """States (n + 1, N_STATE6) of one 6-DOF record, the last step done n and the status (0 ok, 1
-    capsized); the arguments as :func:`simulate_six_dof`."""
+    capsized); the arguments as :func:`simulate_six_dof`, the record starting at time ``t0`` [s] of
+    the waves (a restart from a state inside a record)."""
     nsteps = int(round(duration / dt))
     out = np.empty((nsteps + 1, K6.N_STATE6))
     out[0] = model.s0 if s0 is None else np.asarray(s0, float)
@@ -349,10 +351,10 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
         centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb + 0.5 * rate * span
         reach = hull + (0.5 * abs(rate) + 2.0) * span
         while True:
-            ltab, xi0, h, wrap = wave_line(model, waves, n0 * dt, n1 - n0, dt, centre, reach, points_per_wavelength,
-                                           dtype)
+            ltab, xi0, h, wrap = wave_line(model, waves, t0 + n0 * dt, n1 - n0, dt, centre, reach,
+                                           points_per_wavelength, dtype)
             if ramp_s > 0:
-                r = np.clip((n0 * dt + np.arange(len(ltab)) * 0.5 * dt) / ramp_s, 0.0, 1.0)
+                r = np.clip((t0 + n0 * dt + np.arange(len(ltab)) * 0.5 * dt) / ramp_s, 0.0, 1.0)
                 ltab *= (r * r * (3.0 - 2.0 * r))[:, None, None]
             m = model.m.copy()
             m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = xi0, h, wrap

@@ -266,7 +266,9 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
             e = _open(p)
             stats = {**{a: float(e.attrs[a]) for a in ("hs", "tp", "speed_kn", "heading_deg")},
                      "hours": float(e.exposure_hours), "roll_std": float(e.roll_std),
-                     "roll_kurtosis": float(e.kurtosis.sel(dof="roll")), "capsizes": int(e.capsize_count)}
+                     "roll_kurtosis": float(e.kurtosis.sel(dof="roll")), "capsizes": int(e.capsize_count),
+                     "dof": int(e.attrs.get("dof", 3)),
+                     "broaches": f"{int(e.broach_count)} of {e.sizes['record']}" if "broach_count" in e else "—"}
         conditions.append({"key": k, "stats": stats, "extremes": _extremes_data(results, k, figdir),
                            "splittime": _splittime_data(results, k, figdir),
                            "figures": _optional_figures(results, figdir, f"ensemble/{k}/{{}}.png",

@@ -110,17 +110,29 @@ def simulate_record(model: Model, record: int, s_start=None, n_start: int = 0, n
                     phi_cap_deg: float = 90.0, wtab=None):
     """Regenerate record ``record`` (optionally from state ``s_start`` at step ``n_start`` up to step
     ``n_end``). Returns (states (nsteps + 1, N_STATE) — rows before ``n_start`` unset — and the last step
-    done). Bit-identical to the same steps of the ensemble run."""
-    wtab = wave_table(model, record) if wtab is None else wtab
+    done). Bit-identical to the same steps of the ensemble run.
+
+    6-DOF conditions: states (nsteps + 1, N_STATE6) with the rudder and autopilot states; bit-identical
+    to the ensemble run from the start of the record; a restart inside it tabulates the wave around
+    the ship on other chunks (float32 table values, differences of order 1e-7 relative)."""
     n_end = model.nsteps if n_end is None else n_end
+    if model.six is not None:
+        from stabflow.dynamics._kernels_6dof import N_STATE6
+        from stabflow.dynamics.manoeuvring import run_six_dof
+
+        out = np.empty((model.nsteps + 1, N_STATE6))
+        s0 = model.six.s0 if s_start is None else np.asarray(s_start, float)
+        states, n, _ = run_six_dof(model.six, model.sea.components(model.cond["seed"], record),
+                                   (n_end - n_start) * model.dt, model.dt, phi_cap_deg=phi_cap_deg, s0=s0,
+                                   t0=n_start * model.dt)
+        out[n_start: n_start + n + 1] = states
+        return out, n_start + n
+    wtab = wave_table(model, record) if wtab is None else wtab
     out = np.empty((model.nsteps + 1, N_STATE))
     s0 = model.s0 if s_start is None else np.asarray(s_start, float)
     last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, n_start, n_end, s0,
                      np.radians(phi_cap_deg), out, np.empty((0, 6)))
     return out, last
-
-
-
 
 
 def bins(cond: dict) -> dict[str, np.ndarray]:
@@ -193,18 +205,26 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
                unit="rec")
     if model.six is not None:
         # 6-DOF: one record at a time (the wave is tabulated around the ship as it moves)
-        from stabflow.dynamics.manoeuvring import run_six_dof
+        from stabflow.constants import G
+        from stabflow.dynamics.manoeuvres import record_events
+        from stabflow.dynamics.manoeuvring import run_six_dof, six_dof_dataset
 
         t_mid = np.arange(model.nsteps + 1) * model.dt
         for r in recs:
             amp, w, ph = model.sea.components(cond["seed"], r)
-            states, last, _ = run_six_dof(model.six, (amp, w, ph), model.nsteps * model.dt, model.dt)
+            states, last, status = run_six_dof(model.six, (amp, w, ph), model.nsteps * model.dt, model.dt)
             out = np.zeros((model.nsteps + 1, N_STATE))
             out[:last + 1] = states[:, :N_STATE]
             # wave elevation at midships on the mean track (the spectra's reference series)
             wave_mid = station_wave_table(amp, w, ph, model.sec.x[[model.mid_station]], cond["heading_deg"], model.speed,
                                           t_mid)[:, 0, 0]
             per.append(record_statistics(model, r, out, int(last), wave_mid))
+            # broaching and surf-riding (celerity of the spectral peak's deep-water wave)
+            ev = record_events(six_dof_dataset(model.six, states, model.dt, status), broach_deg=float(cond["broach_deg"]),
+                               celerity=G / model.sea.modal_frequency, surf_tolerance=float(cond["surf_tolerance"]),
+                               surf_min_s=float(cond["surf_min_s"]), heading_deg=float(cond["heading_deg"]))
+            per[-1].update(broached=ev["broach"], broach_time=ev["broach_time"] if ev["broach"] else np.nan,
+                           surf_riding=ev["surf_riding"])
             if r < cond["samples"]:
                 samples[r] = (out, int(last), wave_mid)
             bar.update()
@@ -263,6 +283,10 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
                 "threshold": np.array(cond["thresholds_deg"], float), "lag": np.arange(maxlag + 1) * model.dt,
                 "frequency": freq},
     )
+    if model.six is not None:  # 6-DOF events per record
+        ds["broached"] = ("record", np.array([p["broached"] for p in per], np.int8))
+        ds["broach_time"] = ("record", np.array([p["broach_time"] for p in per]))
+        ds["surf_riding"] = ("record", np.array([p["surf_riding"] for p in per], np.int8))
     psd_sum = np.sum(psds, axis=0) if psds else np.zeros((len(SERIES), nfreq))
     for j, s in enumerate(SERIES):  # one variable per series: each carries its own units
         ds[f"{s}_psd_sum"] = ("frequency", psd_sum[j])
@@ -306,6 +330,7 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     mean response spectra, exposure time, capsize count and rate."""
     shards = sorted(shards, key=lambda d: int(d["record"][0]) if d.sizes["record"] else 0)
     rec_vars = ["steps", "capsized", "capsize_time", "roll_max", "moment_sums"]
+    rec_vars += [v for v in ("broached", "broach_time", "surf_riding") if v in shards[0]]
     ev = {"crossing": [v for v in shards[0].data_vars if v.startswith("crossing_")],
           "peak": ["peak_record", "peak_time", "peak_value"],
           "envelope_peak": ["envelope_peak_record", "envelope_peak_time", "envelope_peak_value"]}
@@ -339,6 +364,9 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     out["exposure_hours"] = ((), hours)
     out["capsize_count"] = ((), int(out["capsized"].sum()))
     out["capsize_rate"] = ((), int(out["capsized"].sum()) / hours)
+    if "broached" in out:
+        out["broach_count"] = ((), int(out["broached"].sum()))
+        out["surf_riding_count"] = ((), int(out["surf_riding"].sum()))
     out.attrs.update(shards[0].attrs)
     out.attrs["n_records"] = int(out.sizes["record"])
     return annotate(out)

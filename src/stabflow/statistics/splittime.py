@@ -19,6 +19,11 @@ Rare problem (motion perturbation method)
     phidot_Cr = phidot_U + delta, so y = 1 at the boundary of capsizing, y > 1 for crossings that
     capsize, and the distribution is extrapolated to y = 1 as the seed's text describes (eq. 1 as
     printed, 1 - phidot_U / phidot_Cr, is 0 at capsize; its complement is used).
+6-DOF conditions
+    The records of ``dof: 6`` conditions are regenerated with the 6-DOF model; the perturbation is
+    applied to the grid state just after the crossing (the autopilot is a discrete controller on
+    the time grid, which an off-grid sub-step would disturb) and the run continues from there
+    (waves restarted at that time, tabulated around the ship chunk by chunk).
 Declustering
     Crossings of the same threshold in the same record closer than the decorrelation time (roll
     autocorrelation envelope below 0.05) form a cluster; the largest metric is kept.
@@ -46,8 +51,8 @@ import xarray as xr
 from scipy import stats
 
 from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
+from stabflow.dynamics.manoeuvring import run_six_dof
 from stabflow.dynamics.tables import kernel_args
-from stabflow import StabflowError
 from stabflow.statistics.ensemble import Model, simulate_record, wave_table
 from stabflow.waves.synthesis import station_wave_table
 from stabflow.statistics.extremes import decluster
@@ -120,8 +125,13 @@ def crossing_state(model: Model, components, states: np.ndarray, n0: int, level:
                    iterations: int = 6) -> tuple[float, np.ndarray]:
     """The state at the instant roll crosses ``level`` [rad] between steps ``n0`` and ``n0 + 1``:
     RK4 sub-steps from the step before the crossing, the sub-step length refined by Newton's method
-    on roll(tau) - level (start: linear interpolation). Returns (time [s], state)."""
+    on roll(tau) - level (start: linear interpolation). Returns (time [s], state). 6-DOF conditions:
+    the state at step ``n0 + 1``, the first beyond the level."""
     dt = model.dt
+    if model.six is not None:
+        # 6-DOF: the first grid state beyond the level (the autopilot is a discrete controller on the
+        # time grid; an off-grid sub-step would change its derivative term)
+        return (n0 + 1) * dt, states[n0 + 1].copy()
     s0 = states[n0]
     r0, r1 = s0[S_ROLL], states[n0 + 1, S_ROLL]
     tau = dt * (level - r0) / (r1 - r0) if r1 != r0 else 0.0
@@ -149,11 +159,15 @@ def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t
     returned to them: sqrt(droll^2 + (droll_rate / w_roll)^2) below ``ret`` [rad] at a check (every
     quarter roll period; paper 003: perturbed runs are truncated at 90 deg or when the motion
     converges to the unperturbed solution). Returns (outcome, last step done): 1 capsized (roll
-    beyond 90 deg), 0 returned, -1 neither by step n1."""
+    beyond 90 deg), 0 returned, -1 neither by step n1.
+
+    6-DOF conditions: ``s_c`` is the grid state at step n0 + 1 (:func:`crossing_state`), perturbed there;
+    ``wtab`` is unused (the wave is tabulated around the ship chunk by chunk)."""
     cap = np.radians(90.0)
     s = s_c.copy()
     s[S_RATE + S_ROLL] += side * np.radians(delta_deg)
-    s = sub_step(model, components, s, t_c, (n0 + 1) * model.dt - t_c)
+    if model.six is None:
+        s = sub_step(model, components, s, t_c, (n0 + 1) * model.dt - t_c)
     buf[n0 + 1] = s
     k = n0 + 1
     w = 2 * np.pi / model.roll_period
@@ -169,7 +183,13 @@ def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t
         if k >= n1:
             return -1, k
         k1 = min(k + chunk, n1)
-        last = _simulate(*args, model.p, wtab, model.dt, k, k1, buf[k].copy(), cap, buf, np.empty((0, 6)))
+        if model.six is None:
+            last = _simulate(*args, model.p, wtab, model.dt, k, k1, buf[k].copy(), cap, buf, np.empty((0, 6)))
+        else:
+            st6, n, _ = run_six_dof(model.six, components, (k1 - k) * model.dt, model.dt, s0=buf[k].copy(),
+                                    t0=k * model.dt)
+            buf[k: k + n + 1] = st6
+            last = k + n
         if last < k1:
             return 1, last
         k = k1
@@ -257,10 +277,10 @@ def critical_perturbations(model: Model, records, steps, sides, levels, follow: 
     def one_record(r):
         idx = np.nonzero(records == r)[0]
         idx = idx[np.argsort(steps[idx], kind="stable")]
-        wtab = wave_table(model, int(r))
+        wtab = wave_table(model, int(r)) if model.six is None else None
         comps = model.sea.components(model.cond["seed"], int(r))
         states, last = simulate_record(model, int(r), wtab=wtab)
-        buf = np.empty((model.nsteps + 1, N_STATE))
+        buf = np.empty_like(states)
         for j, c in enumerate(idx):
             n0 = int(steps[c])
             n1 = min(n0 + follow, model.nsteps)
@@ -291,9 +311,6 @@ def critical_perturbations(model: Model, records, steps, sides, levels, follow: 
 def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress: bool = False) -> xr.Dataset:
     """Split-time capsize rate from the first ``sample_hours`` of the ensemble at each threshold,
     against the brute-force rate of the other records."""
-    if model.six is not None:
-        raise StabflowError(f"splittime: condition {ens.attrs.get('condition', '?')!r} is 6-DOF: split-time runs on "
-                            "3-DOF conditions only (its perturbed runs use the 3-DOF kernel)")
     dt = float(ens.attrs["dt"])
     duration = float(ens.attrs["duration"])
     tau = decorrelation_time(ens["roll_autocorrelation"])
@@ -401,7 +418,7 @@ def perturbed_histories(model: Model, record: int, step: int, side: int, deltas,
     at the exact crossing of ``side * level_deg`` after ``step``, as in :func:`critical_perturbations`)
     over ``window`` steps (paper 003 Fig. 4). Returns (t [s], unperturbed, list of runs), starting at
     the crossing instant."""
-    wtab = wave_table(model, int(record))
+    wtab = wave_table(model, int(record)) if model.six is None else None
     comps = model.sea.components(model.cond["seed"], int(record))
     states, last = simulate_record(model, int(record), wtab=wtab)
     tc, sc = crossing_state(model, comps, states, step, np.radians(side * level_deg))
@@ -409,7 +426,7 @@ def perturbed_histories(model: Model, record: int, step: int, side: int, deltas,
     t = np.concatenate([[tc], np.arange(step + 1, n1 + 1) * model.dt])
     runs = []
     for d in deltas:
-        buf = np.full((model.nsteps + 1, N_STATE), np.nan)
+        buf = np.full(states.shape, np.nan)
         perturbed_run(model, comps, wtab, sc, tc, step, n1, side, d, buf)
         runs.append(np.degrees(np.concatenate([[sc[S_ROLL]], buf[step + 1: n1 + 1, S_ROLL]])))
     base = np.full(len(t), np.nan)
