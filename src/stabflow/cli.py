@@ -132,6 +132,17 @@ def _broaching(a):
     return steps.run_broaching(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs)
 
 
+def _derivative(a):
+    cfg = _pipeline(a)
+    if "derivative" not in cfg:
+        raise StabflowError(f"{a.config}: derivative: the section is missing: nothing to run")
+    figs = None
+    if a.figures:
+        s = cfg["derivative"]["ship"]
+        figs = {n: str(Path(a.figures) / f"{s}_{n}.png") for n in steps.DERIVATIVE_FIGURES}
+    return steps.run_derivative(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs)
+
+
 COMMANDS: dict[str, Command] = {
     "hull": Command("cut stations and Bonjean tables", (SHIP, OUT, FIGURE),
                     lambda a: steps.run_hull(a.ship, a.output, a.figure)),
@@ -194,6 +205,11 @@ COMMANDS: dict[str, Command] = {
                           (("--figures",), {"help": "folder for the figures (<ship>_motions_<loading>.png, "
                                                     "<ship>_strip.png, <ship>_manoeuvres.png)"})),
                          _broaching),
+    "derivative": Command("derivative model of heave-roll-pitch (paper 001): fit, regular-wave parametric-roll map",
+                          (CONFIG, OUT, (("--validation",), {"required": True, "help": "validation rows NetCDF"}),
+                           (("--figures",), {"help": "folder for <ship>_fit.png, <ship>_transfer_functions.png, "
+                                                     "<ship>_map.png"})),
+                          _derivative),
     "report": Command("build the HTML report from a results folder",
                       (CONFIG, (("--results",), {"default": "results"}), (("--source",), {"default": "report"}),
                        (("-o", "--output"), {"default": "results/report/html/index.html"})),

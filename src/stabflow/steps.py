@@ -440,3 +440,33 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     write_netcdf(ds, out_nc)
     write_netcdf(checks_dataset(cfg["ship"], "manoeuvring", rows), validation_nc)
     return ds
+
+
+#: figure stems of the derivative step: results/derivative/<ship>_<stem>.png
+DERIVATIVE_FIGURES = ("fit", "transfer_functions", "map")
+
+
+def run_derivative(config: dict, ships_dir, out_nc, validation_nc, figures: dict | None = None,
+                   progress: bool = True) -> xr.Dataset:
+    """derivative step (issue 18): the derivative model (paper 001) fitted from the volume-based
+    forces, its regular-wave parametric-roll map against the full model → NetCDF with the fit
+    residuals, validation rows, figures."""
+    from pathlib import Path
+
+    from stabflow.dynamics.derivative import derivative_study
+    from stabflow.io import write_netcdf
+    from stabflow.plots.derivative import fit_figure, map_figure, transfer_figure
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.derivative import derivative_checks
+
+    cfg = config["derivative"]
+    ship = load_ship(Path(ships_dir) / f"{cfg['ship']}.yaml")
+    model, dm, ds = derivative_study(ship, cfg, progress=progress)
+    rows = derivative_checks(model, dm, ds)
+    if figures:
+        fit_figure(model, dm, figures["fit"])
+        transfer_figure(ds, figures["transfer_functions"])
+        map_figure(ds, figures["map"])
+    write_netcdf(ds, out_nc)
+    write_netcdf(checks_dataset(cfg["ship"], "derivative", rows), validation_nc)
+    return ds

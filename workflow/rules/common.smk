@@ -4,6 +4,7 @@ from pathlib import Path
 from snakemake.utils import validate
 
 from stabflow.config import coerce_numbers, load_ship, schema, step_settings
+from stabflow.steps import DERIVATIVE_FIGURES as DERIVATIVE_FIGURE_STEMS
 
 
 # numbers typed as 8.6e6 reach us as strings from Snakemake's YAML 1.1 loader: read them as numbers
@@ -23,12 +24,11 @@ for _step in ("extremes", "splittime"):
     for _key in config[_step]["conditions"]:
         if _key not in ENSEMBLES:
             raise ValueError(f"config: {_step}: conditions: {_key!r} is not an ensemble (have {sorted(ENSEMBLES)})")
-    for _key in config[_step]["overrides"]:
-        if _key not in config[_step]["conditions"]:
-            raise ValueError(f"config: {_step}: overrides: {_key!r} is not among {_step}.conditions")
+        # overrides of other conditions may come from the base config that a --configfile extends
         step_settings(config[_step], _step, _key)
-if "broaching" in config and config["broaching"]["ship"] not in SHIPS:
-    raise ValueError(f"config: broaching: ship {config['broaching']['ship']!r} is not in ships")
+for _step in ("broaching", "derivative"):
+    if _step in config and config[_step]["ship"] not in SHIPS:
+        raise ValueError(f"config: {_step}: ship {config[_step]['ship']!r} is not in ships")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")
@@ -125,7 +125,25 @@ def validation_files():
         + [f"{RESULTS}/validation/{k}_ensemble.nc" for k in ENSEMBLES]
         + capsize_1dof_outputs("validation")
         + broaching_outputs("validation")
+        + derivative_outputs("validation")
     )
+
+
+def derivative_outputs(which="nc"):
+    """The derivative model's fit, map and checks when the config has a derivative section."""
+    if "derivative" not in config:
+        return []
+    s = config["derivative"]["ship"]
+    return {"nc": [f"{RESULTS}/derivative/{s}.nc"], "validation": [f"{RESULTS}/validation/{s}_derivative.nc"],
+            "figures": [f"{RESULTS}/derivative/{s}_{f}.png" for f in DERIVATIVE_FIGURES]}[which]
+
+
+def derivative_ship():
+    """The ship of the derivative step (the rule's {ship} wildcard is constrained to it)."""
+    return config["derivative"]["ship"] if "derivative" in config else "none"
+
+
+DERIVATIVE_FIGURES = list(DERIVATIVE_FIGURE_STEMS)
 
 
 def broaching_outputs(which="nc"):
@@ -178,5 +196,6 @@ def all_outputs():
         + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]
         + capsize_1dof_outputs()
         + broaching_outputs()
+        + derivative_outputs()
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )

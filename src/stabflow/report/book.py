@@ -357,12 +357,37 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                    strip_loading=d.attrs.get("strip_loading", ""))
 
 
+def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | None:
+    """The derivative model (paper 001): fit, transfer functions, the regular-wave map of both models."""
+    if "derivative" not in config:
+        return None
+    ship = config["derivative"]["ship"]
+    p = results / "derivative" / f"{ship}.nc"
+    if not p.exists():
+        return None
+    d = _open(p)
+    figs = _optional_figures(results, figdir, f"derivative/{ship}_{{}}.png", ("fit", "transfer_functions", "map"))
+    rows = []
+    for x in d["frequency_ratio"].values:
+        for h in d["wave_height"].values:
+            c = d.sel(frequency_ratio=x, wave_height=h)
+            if float(c["roll_full"]) > 5 or float(c["roll_derivative"]) > 5:
+                rows.append({"ratio": float(x), "height": float(h), "wavelength": float(c["wavelength"]),
+                             "full": float(c["roll_full"]), "deriv": float(c["roll_derivative"]),
+                             "steady": f"{'yes' if int(c['steady_full']) else 'no'} / "
+                                       f"{'yes' if int(c['steady_derivative']) else 'no'}"})
+    fit = {f: float(d["calm_residual"].sel(force=f) / d["calm_rms"].sel(force=f)) for f in ("heave", "roll", "pitch")}
+    return _render("parametric_roll.md.j2", ship=ship, a=d.attrs, rows=rows, fit=fit, figures=figs,
+                   cpu_full=float(d["cpu_full"]), cpu_deriv=float(d["cpu_derivative"]), cells=int(d["roll_full"].size))
+
+
 #: validation steps in report order: (step attribute, title, file suffix)
 STEPS = [("statics", "Calm-water statics", "statics"), ("waves", "Stability in waves and metric C", "waves"),
          ("dynamics", "Time domain (3-DOF)", "dynamics"),
          ("ensemble", "Irregular seas: seaways, step size, extremes, split-time", "ensemble"),
          ("capsize", "Capsize-rate methods against brute force (1-DOF box barge)", "capsize"),
-         ("manoeuvring", "6-DOF manoeuvring and surf-riding", "manoeuvring")]
+         ("manoeuvring", "6-DOF manoeuvring and surf-riding", "manoeuvring"),
+         ("derivative", "Derivative model against the full model (parametric roll)", "derivative")]
 
 
 def validation_rows(results: Path, expected: dict[str, list[tuple[str, str]]]) -> dict[str, list[dict]]:
@@ -446,8 +471,9 @@ def expected_validation(ships: list[str], config: dict) -> dict:
     ens = [(f"{c['ship']}_{c['name']}", c["ship"]) for c in config.get("ensembles", [])]
     one_dof = [("box1dof", "box1dof")] if config.get("capsize_1dof", {}).get("bands") else []
     six = [(config["broaching"]["ship"], config["broaching"]["ship"])] if "broaching" in config else []
+    der = [(config["derivative"]["ship"], config["derivative"]["ship"])] if "derivative" in config else []
     return {"statics": [(s, s) for s in ships], "waves": [(s, s) for s in ships], "dynamics": [(s, s) for s in ships],
-            "ensemble": ens, "capsize": one_dof, "manoeuvring": six}
+            "ensemble": ens, "capsize": one_dof, "manoeuvring": six, "derivative": der}
 
 
 def build_report(results: str | Path, ships: list[str], config: dict, source: str | Path, out_html: str | Path) -> Path:
@@ -470,6 +496,7 @@ def build_report(results: str | Path, ships: list[str], config: dict, source: st
         chapters["waves"] = waves_page(results, figdir)
         chapters["rare_events"] = rare_events_page(results, config, figdir)
         chapters["broaching"] = broaching_page(results, config, figdir)
+        chapters["parametric_roll"] = parametric_roll_page(results, config, figdir)
         chapters = {stem: page for stem, page in chapters.items() if page}
         for stem, page in chapters.items():
             (book / f"{stem}.md").write_text(page)

@@ -46,7 +46,7 @@ class Model:
 
     ship: Ship
     cond: dict
-    sea: Seaway
+    sea: Seaway | None
     sec: Sections
     st: xr.Dataset
     tables: SectionTables
@@ -94,7 +94,8 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
 
         six = build_six_dof(sec, st, co, s.rho, float(cond["heading_deg"]), float(cond["speed_kn"]) * KNOT,
                             manoeuvring_from_ship(s, sec, st), tables=tables)
-    return Model(s, cond, Seaway.from_config(cond["sea"]), sec, st, tables, p, initial_state(sec, st), depth,
+    sea = Seaway.from_config(cond["sea"]) if "sea" in cond else None  # regular-wave studies have none
+    return Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth,
                  co.natural_period("roll"), six)
 
 

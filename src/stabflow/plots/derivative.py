@@ -1,0 +1,82 @@
+"""Derivative model (paper 001): restoring fit, transfer functions, regular-wave parametric-roll map."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from stabflow.plots._style import atomic_savefig, plt
+
+
+def fit_figure(model, dm, path):
+    """Calm-water roll moment and heave force over roll (z = theta = 0) and over heave (phi = theta
+    = 0): sampled volume-based forces against the fitted polynomial."""
+    from stabflow.dynamics import derivative as D
+    from stabflow.dynamics.tables import kernel_args
+
+    args = kernel_args(model.sec, model.tables)
+    calm = np.zeros((1, len(model.sec.x), 2 if model.depth is None else 3))
+    rr = np.radians(float(dm.dataset.attrs["roll_range_deg"]))
+    hr = float(dm.dataset.attrs["heave_range"])
+    phi = np.linspace(-1.5 * rr, 1.5 * rr, 61)
+    z = np.linspace(-1.5 * hr, 1.5 * hr, 61)
+    fig, ax = plt.subplots(1, 2, figsize=(10, 3.8))
+    for a, rel, k, x, lab, unit, scale in (
+            (ax[0], np.column_stack([0 * phi, phi, 0 * phi]), 1, np.degrees(phi), "roll [deg]", "MN m", 1e-6),
+            (ax[1], np.column_stack([z, 0 * z, 0 * z]), 0, z, "heave of G [m]", "MN", 1e-6)):
+        R = D._sample(args, model.p, dm.q0, rel, calm)[0][:, k]
+        A = np.column_stack([np.prod(rel ** np.array(e), axis=1) for e in D.CALM_TERMS])
+        a.plot(x, scale * R, "k-", lw=1.5, label="volume-based FK + HS")
+        a.plot(x, scale * (A @ dm.calm[k]), "r--", lw=1.2, label="third-order polynomial")
+        lim = np.degrees(rr) if k == 1 else hr
+        a.axvspan(-lim, lim, color="0.9", zorder=0, label="fit range")
+        a.set_xlabel(lab)
+        a.set_ylabel(f"generalized {('heave force', 'roll moment')[k]} [{unit}]")
+        a.legend(fontsize=8)
+    fig.suptitle("Calm-water restoring: sampled forces and the derivative model's polynomial")
+    fig.tight_layout()
+    atomic_savefig(fig, path, dpi=120)
+    plt.close(fig)
+
+
+def transfer_figure(ds: xr.Dataset, path):
+    """Moduli of the transfer functions of the heave and pitch excitation and of the roll
+    restoring coefficient K_zeta_phi (paper 001 Figs 3-5), per metre of wave amplitude."""
+    w = ds["tf_frequency"].values
+    T = ds["tf_real"].values + 1j * ds["tf_imag"].values
+    terms = list(ds["wave_term"].values)
+    fig, ax = plt.subplots(1, 3, figsize=(12, 3.6))
+    for a, (k, term, title, unit) in zip(ax, ((0, "1", "heave excitation Z_w", "MN/m"),
+                                             (2, "1", "pitch excitation M_w", "MN m/m"),
+                                             (1, "phi", "roll restoring K_zeta_phi", "MN m/rad/m"))):
+        a.plot(w, np.abs(T[:, k, terms.index(term)]) * 1e-6, "b-")
+        a.set_xlabel("wave frequency [rad/s]")
+        a.set_ylabel(f"|T| [{unit}]")
+        a.set_title(title, fontsize=10)
+    fig.tight_layout()
+    atomic_savefig(fig, path, dpi=120)
+    plt.close(fig)
+
+
+def map_figure(ds: xr.Dataset, path):
+    """Largest roll over the last window in regular waves over omega_e / omega_roll x wave height:
+    full model and derivative model side by side (Ince-Strutt-shaped instability region)."""
+    x = ds["frequency_ratio"].values
+    h = ds["wave_height"].values
+    vmax = float(max(ds["roll_full"].max(), ds["roll_derivative"].max(), 1.0))
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
+    for a, v, name in ((ax[0], "roll_full", "full volume-based model"), (ax[1], "roll_derivative", "derivative model")):
+        m = a.pcolormesh(x, h, ds[v].values.T, shading="nearest", cmap="viridis", vmin=0, vmax=vmax)
+        cap = ds[v.replace("roll", "capsized")].values.T
+        for i in range(len(h)):
+            for j in range(len(x)):
+                if cap[i, j]:
+                    a.text(x[j], h[i], "C", ha="center", va="center", color="w", fontsize=8)
+        a.set_xlabel("encounter / roll natural frequency")
+        a.set_title(name, fontsize=10)
+    ax[0].set_ylabel("wave height [m]")
+    fig.colorbar(m, ax=ax, label="largest |roll| over the last 10 roll periods [deg]")
+    fig.suptitle(f"Parametric roll in regular waves (heading {ds.attrs['heading_deg']:g}°, "
+                 f"{ds.attrs['speed'] / 0.514444:.0f} kn); C = capsized")
+    atomic_savefig(fig, path, dpi=120)
+    plt.close(fig)

@@ -1,0 +1,121 @@
+"""Checks of the derivative model (paper 001) against the full volume-based model it is fitted from.
+
+| check | reference | tolerance | kind |
+|---|---|---|---|
+| calm-water restoring polynomial, RMS residual per force | the sampled FK + HS forces over the hull-position grid | 5 % of their RMS | consistency |
+| wave excitation (constant term's transfer function) at three wave frequencies, heave and pitch | first harmonic of the FK loads on the ship held at equilibrium in a regular wave at speed, exact section clipping (:func:`stabflow.dynamics.linear.fk_excitation`) | 3 % of its modulus | consistency |
+| small regular waves: steady heave and pitch amplitudes | the full model in the same waves | 3 % | consistency |
+| regular-wave map: steady parametric-roll amplitude per cell where both models are steady above 5 deg | the full model | 10 % (issue 18) | consistency |
+| regular-wave map: cells classified alike (parametric roll above 5 deg or not) | the full model | share >= 0.8 (stabflow's criterion) | consistency |
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from stabflow.constants import G
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics.derivative import WAVE_TERMS, DerivativeModel, run_derivative
+from stabflow.dynamics.linear import fk_excitation
+from stabflow.validation import Check
+
+#: roll amplitude [deg] above which a map cell counts as parametric roll
+PARAMETRIC_DEG = 5.0
+
+
+def _first_harmonic_amplitude(t, x, we):
+    from stabflow.dynamics.rao import first_harmonic
+
+    return first_harmonic(t, x, we)[0]
+
+
+def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: float = 0.5,
+                      wavelengths=(0.8, 1.2, 2.0)) -> list[Check]:
+    """Rows of the module table for the ensemble-style ``model`` (:func:`stabflow.statistics.ensemble.build_model`),
+    its fitted derivative model ``dm`` and the study dataset ``ds`` (fit + regular-wave map)."""
+    from stabflow.dynamics._kernels import _simulate
+    from stabflow.dynamics.tables import kernel_args
+    from stabflow.validation.dynamics import KernelLoads
+    from stabflow.waves.synthesis import station_wave_table
+
+    rows = []
+    for i, f in enumerate(("heave", "roll", "pitch")):
+        rel = float(ds["calm_residual"][i] / ds["calm_rms"][i])
+        rows.append(Check(f"derivative model: calm-water {f} restoring polynomial, RMS residual / RMS", rel, 0.05, "1",
+                          "sampled FK + HS restoring forces over the hull-position grid", "consistency"))
+    lwl = float(model.st["lwl"])
+    lcg, kg = float(model.st["lcg"]), float(model.st["kg"])
+    th0 = float(model.s0[K.S_PITCH])
+    h0 = K._origin_height(model.s0[K.S_Z], 0.0, th0, lcg, kg)
+    j0 = WAVE_TERMS.index((0, 0, 0))
+    for r in wavelengths:
+        lam = r * lwl
+        w = np.sqrt(2 * np.pi * G / lam)
+        # at the fit's own amplitude: the first harmonic depends on the amplitude (odd orders)
+        a = float(np.interp(w, dm.frequency, ds["fit_amplitude"].values))
+        we = abs(w - w**2 / G * model.speed * np.cos(np.radians(dm.heading_deg)))
+        loads = KernelLoads(model.sec, model.ship.rho, lcg, kg, (np.array([a]), np.array([w]), np.array([0.0])),
+                            dm.heading_deg, model.speed, model.depth)
+        F = fk_excitation(loads, h0, th0, we)
+        for k, f in ((0, "heave"), (2, "pitch")):
+            T = np.interp(w, dm.frequency, dm.tf[:, k, j0].real) + 1j * np.interp(w, dm.frequency, dm.tf[:, k, j0].imag)
+            if not (dm.frequency[0] <= w <= dm.frequency[-1]):
+                rows.append(Check(f"derivative model: {f} wave excitation at lambda/L = {r:g}", np.nan, 0.03, "1",
+                                  "FK loads on the ship held at equilibrium", "consistency",
+                                  reason=f"wave frequency {w:.3f} rad/s outside the fitted range"))
+                continue
+            # the time-domain first harmonic is Re[F e^{i we t}]; the transfer function's Re[a T e^{-i we t}]
+            dev = abs(F[k] - a * np.conj(T)) / abs(F[k])
+            rows.append(Check(f"derivative model: {f} wave excitation at lambda/L = {r:g}, |difference| / |F|", dev, 0.03,
+                              "1", "first harmonic of the FK loads on the ship held at equilibrium in a regular wave at "
+                              "speed, exact section clipping (linear.fk_excitation)", "consistency"))
+    # small regular waves: steady heave and pitch, both models
+    args = kernel_args(model.sec, model.tables)
+    for r in wavelengths:
+        lam = r * lwl
+        w = np.sqrt(2 * np.pi * G / lam)
+        we = abs(w - w**2 / G * model.speed * np.cos(np.radians(dm.heading_deg)))
+        te = 2 * np.pi / we
+        dt = min(0.1, te / 40)
+        dur = max(40 * te, 400.0)
+        n = int(round(dur / dt))
+        waves = (np.array([0.5 * small_height]), np.array([w]), np.array([0.0]))
+        wtab = station_wave_table(*waves, model.sec.x, dm.heading_deg, model.speed, np.arange(2 * n + 1) * 0.5 * dt,
+                                  model.depth)
+        out = np.empty((n + 1, K.N_STATE))
+        _simulate(*args, model.p, wtab, dt, 0, n, model.s0, np.radians(90.0), out, np.empty((0, 6)))
+        od, _ = run_derivative(dm, waves, dur, dt)
+        t = np.arange(n + 1) * dt
+        sel = t >= t[-1] - 10 * te
+        for k, f in ((K.S_Z, "heave"), (K.S_PITCH, "pitch")):
+            full = _first_harmonic_amplitude(t[sel], out[sel, k], we)
+            der = _first_harmonic_amplitude(t[sel], od[sel, k], we)
+            rows.append(Check(f"derivative model: {f} amplitude in a {small_height:g} m regular wave, lambda/L = {r:g}, "
+                              "relative to the full model", der / full - 1, 0.03, "1",
+                              "full volume-based model in the same wave", "consistency"))
+    # the regular-wave map
+    both = (ds["steady_full"] == 1) & (ds["steady_derivative"] == 1) & (ds["roll_full"] > PARAMETRIC_DEG) & (
+        ds["roll_derivative"] > PARAMETRIC_DEG)
+    ref = "full volume-based model in the same regular wave (paper 001's verification in regular waves)"
+    cells = [(float(x), float(h)) for x in ds["frequency_ratio"].values for h in ds["wave_height"].values
+             if bool(both.sel(frequency_ratio=x, wave_height=h))]
+    for x, h in cells:
+        c = ds.sel(frequency_ratio=x, wave_height=h)
+        rows.append(Check(f"derivative model: steady parametric roll at omega_e/omega_roll = {x:.2f}, H = {h:g} m, "
+                          "relative to the full model", float(c["roll_derivative"] / c["roll_full"] - 1), 0.10, "1", ref,
+                          "consistency"))
+    pf = ds["roll_full"] > PARAMETRIC_DEG
+    pd = ds["roll_derivative"] > PARAMETRIC_DEG
+    if not cells:
+        # no parametric roll anywhere in the map: nothing to compare (SKIPPED); in one model only: FAIL
+        none = not bool(pf.any()) and not bool(pd.any())
+        rows.append(Check("derivative model: steady parametric roll in the regular-wave map", np.nan, 0.10, "1", ref,
+                          "consistency", skipped=none,
+                          reason=("neither model reaches" if none else "no cell where both models reach")
+                          + f" a steady roll above {PARAMETRIC_DEG:g} deg in the map"))
+    share = float((pf == pd).mean())
+    rows.append(Check(f"derivative model: map cells classified alike (parametric roll above {PARAMETRIC_DEG:g} deg or "
+                      f"not; {int(pf.sum())} full, {int(pd.sum())} derivative of {pf.size})", share, 0.0, "1", ref,
+                      "consistency", lower=0.8, upper=1.0))
+    return rows
