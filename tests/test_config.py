@@ -159,3 +159,11 @@ def test_step_overrides_per_condition():
         step_settings(dict(st, overrides={"a_b": {"sample_hours": -1.0}}), "splittime", "a_b")
     with pytest.raises(StabflowError, match=r"extremes\.overrides\.a_b: unknown setting\(s\) sample_hour"):
         step_settings(dict(cfg["extremes"], overrides={"a_b": {"sample_hour": 5.0}}), "extremes", "a_b")
+
+
+def test_condition_key_of_pipeline_and_bare_names():
+    """The overrides key of an ensemble: the pipeline names a condition by its key, the CLI by its name."""
+    from stabflow.steps import condition_key
+
+    assert condition_key({"ship": "trawler", "condition": "trawler_sq6"}) == "trawler_sq6"
+    assert condition_key({"ship": "trawler", "condition": "sq6"}) == "trawler_sq6"

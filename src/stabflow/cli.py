@@ -139,8 +139,13 @@ def _derivative(a):
     figs = None
     if a.figures:
         s = cfg["derivative"]["ship"]
-        figs = {n: str(Path(a.figures) / f"{s}_{n}.png") for n in steps.DERIVATIVE_FIGURES}
-    return steps.run_derivative(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs)
+        figs = {n: str(Path(a.figures) / f"{s}_{n}.png") for n in steps.derivative_figure_names(cfg)}
+    from stabflow.dynamics.derivative import compared_ensembles
+
+    pair = compared_ensembles(cfg)
+    res = Path(cfg.get("results", "results"))
+    ens = {k: str(res / "ensemble" / v / "ensemble.nc") for k, v in pair.items()} if pair else None
+    return steps.run_derivative(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs, ens)
 
 
 COMMANDS: dict[str, Command] = {
@@ -208,7 +213,8 @@ COMMANDS: dict[str, Command] = {
     "derivative": Command("derivative model of heave-roll-pitch (paper 001): fit, regular-wave parametric-roll map",
                           (CONFIG, OUT, (("--validation",), {"required": True, "help": "validation rows NetCDF"}),
                            (("--figures",), {"help": "folder for <ship>_fit.png, <ship>_transfer_functions.png, "
-                                                     "<ship>_map.png"})),
+                                                     "<ship>_map.png (and the irregular-sea figures); the "
+                                                     "ensembles are read from the config's results folder"})),
                           _derivative),
     "report": Command("build the HTML report from a results folder",
                       (CONFIG, (("--results",), {"default": "results"}), (("--source",), {"default": "report"}),

@@ -196,3 +196,14 @@ def step_settings(cfg: dict, step: str, key: str) -> dict:
         field = ".".join(str(p) for p in err.absolute_path)
         raise StabflowError(f"config: {step}.overrides.{key}.{field}: {err.message}")
     return merged
+
+
+def derivative_fit_settings(fit: dict) -> dict:
+    """The derivative model's fit settings (``derivative.fit`` of the config schema, also an ensemble
+    condition's ``derivative_fit``) with defaults filled; validated like that section."""
+    sch = schema("config")["properties"]["derivative"]["properties"]["fit"]
+    err = next(iter(jsonschema.Draft202012Validator(sch).iter_errors(dict(fit))), None)
+    if err is not None:
+        field = ".".join(str(p) for p in err.absolute_path)
+        raise StabflowError(f"config: derivative_fit.{field}: {err.message}")
+    return _fill_defaults(sch, dict(fit))

@@ -334,6 +334,13 @@ def run_ensemble_merge(shard_ncs, out_nc, fig_distribution=None, fig_spectra=Non
     return ens
 
 
+def condition_key(attrs) -> str:
+    """The ensemble key <ship>_<name> of an ensemble dataset's attributes (the pipeline names its
+    conditions by the key already; the CLI and the library may use the bare name)."""
+    c, ship = str(attrs["condition"]), str(attrs["ship"])
+    return c if c.startswith(f"{ship}_") else f"{ship}_{c}"
+
+
 def run_extremes(ensemble_nc, cfg: dict, out_nc, fig_threshold=None, fig_rate=None, fig_validation=None):
     """extremes step: envelope POT + GPD rates from sample blocks, validated against the ensemble."""
     from stabflow.statistics.extremes import analyse
@@ -342,7 +349,7 @@ def run_extremes(ensemble_nc, cfg: dict, out_nc, fig_threshold=None, fig_rate=No
 
     with xr.open_dataset(ensemble_nc) as e:
         ens = e.load()
-    cfg = step_settings(cfg, "extremes", f"{ens.attrs['ship']}_{ens.attrs['condition']}")
+    cfg = step_settings(cfg, "extremes", condition_key(ens.attrs))
     ds, extra = analyse(ens, cfg, progress=True)
     a = ens.attrs
     head = f"{a['condition']}: Hs {a['hs']:g} m, {a['speed_kn']:g} kn, heading {a['heading_deg']:g}°"
@@ -373,7 +380,7 @@ def run_splittime(ship_yaml, cond: dict, ensemble_nc, cfg: dict, out_nc, figures
     model = build_model(load_ship(ship_yaml), cond, hydro)
     with xr.open_dataset(ensemble_nc) as e:
         ens = e.load()
-    cfg = step_settings(cfg, "splittime", f"{ens.attrs['ship']}_{ens.attrs['condition']}")
+    cfg = step_settings(cfg, "splittime", condition_key(ens.attrs))
     ds = analyse(model, ens, cfg, threads=threads, progress=True)
     if figures:
         a = ens.attrs
@@ -442,31 +449,59 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     return ds
 
 
-#: figure stems of the derivative step: results/derivative/<ship>_<stem>.png
-DERIVATIVE_FIGURES = ("fit", "transfer_functions", "map")
+def derivative_figure_names(config: dict) -> list[str]:
+    """Figure stems of the derivative step (results/derivative/<ship>_<stem>.png) for the pipeline config."""
+    from stabflow.dynamics.derivative import compared_ensembles
+
+    cfg = config["derivative"]
+    return (["fit", "transfer_functions", "map"] + (["irregular", "running"] if compared_ensembles(config) else [])
+            + (["irregular_map"] if "irregular_map" in cfg else []))
 
 
 def run_derivative(config: dict, ships_dir, out_nc, validation_nc, figures: dict | None = None,
-                   progress: bool = True) -> xr.Dataset:
+                   ensembles: dict | None = None, progress: bool = True) -> xr.Dataset:
     """derivative step (issue 18): the derivative model (paper 001) fitted from the volume-based
-    forces, its regular-wave parametric-roll map against the full model → NetCDF with the fit
-    residuals, validation rows, figures."""
+    forces, its regular-wave parametric-roll map against the full model, the two models' ensembles
+    of one sea compared (``ensembles`` {"full": path, "derivative": path} of the ensemble.nc files of
+    :func:`stabflow.dynamics.derivative.compared_ensembles`), and the
+    irregular-sea map over speed x peak period → NetCDF with the fit residuals, validation rows,
+    figures."""
     from pathlib import Path
 
-    from stabflow.dynamics.derivative import derivative_study
+    from stabflow.dynamics.derivative import compared_ensembles, derivative_study, irregular_map
     from stabflow.io import write_netcdf
-    from stabflow.plots.derivative import fit_figure, map_figure, transfer_figure
+    from stabflow.plots import derivative as P
     from stabflow.validation import checks_dataset
-    from stabflow.validation.derivative import derivative_checks
+    from stabflow.validation.derivative import derivative_checks, irregular_checks
+    from stabflow.waves.seaway import Seaway
 
     cfg = config["derivative"]
     ship = load_ship(Path(ships_dir) / f"{cfg['ship']}.yaml")
     model, dm, ds = derivative_study(ship, cfg, progress=progress)
     rows = derivative_checks(model, dm, ds)
+    pair = compared_ensembles(config)
+    if pair:
+        if not ensembles:
+            raise StabflowError(f"derivative: ensembles {pair['full']} and {pair['derivative']} are compared; give "
+                                "their ensemble.nc files")
+        with xr.open_dataset(ensembles["full"]) as f, xr.open_dataset(ensembles["derivative"]) as d:
+            full, der = f.load(), d.load()
+        conds = {f"{c['ship']}_{c['name']}": c for c in config.get("ensembles", [])}
+        sea = Seaway.from_config(conds[pair["full"]]["sea"])
+        rows += irregular_checks(full, der, float(cfg["level_deg"]), sea, int(full.attrs["seed"]))
+        if figures:
+            P.irregular_figure(full, der, figures["irregular"], float(cfg["level_deg"]))
+            P.running_variance_figure(full, figures["running"])
+    if "irregular_map" in cfg:
+        im = irregular_map(ship, cfg, progress=progress)
+        ds = ds.merge(im)
+        ds.attrs.update(im.attrs)
+        if figures:
+            P.irregular_map_figure(ds, figures["irregular_map"])
     if figures:
-        fit_figure(model, dm, figures["fit"])
-        transfer_figure(ds, figures["transfer_functions"])
-        map_figure(ds, figures["map"])
+        P.fit_figure(model, dm, figures["fit"])
+        P.transfer_figure(ds, figures["transfer_functions"])
+        P.map_figure(ds, figures["map"])
     write_netcdf(ds, out_nc)
     write_netcdf(checks_dataset(cfg["ship"], "derivative", rows), validation_nc)
     return ds

@@ -4,7 +4,8 @@ from pathlib import Path
 from snakemake.utils import validate
 
 from stabflow.config import coerce_numbers, load_ship, schema, step_settings
-from stabflow.steps import DERIVATIVE_FIGURES as DERIVATIVE_FIGURE_STEMS
+from stabflow.dynamics.derivative import compared_ensembles
+from stabflow.steps import derivative_figure_names
 
 
 # numbers typed as 8.6e6 reach us as strings from Snakemake's YAML 1.1 loader: read them as numbers
@@ -29,6 +30,10 @@ for _step in ("extremes", "splittime"):
 for _step in ("broaching", "derivative"):
     if _step in config and config[_step]["ship"] not in SHIPS:
         raise ValueError(f"config: {_step}: ship {config[_step]['ship']!r} is not in ships")
+for _key, _c in ENSEMBLES.items():
+    if _c.get("compare_with") and f"{_c['ship']}_{_c['compare_with']}" not in ENSEMBLES:
+        raise ValueError(f"config: ensembles: {_key}: compare_with: {_c['compare_with']!r} is not a condition of "
+                         f"ship {_c['ship']!r} (have {sorted(ENSEMBLES)})")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")
@@ -143,7 +148,13 @@ def derivative_ship():
     return config["derivative"]["ship"] if "derivative" in config else "none"
 
 
-DERIVATIVE_FIGURES = list(DERIVATIVE_FIGURE_STEMS)
+DERIVATIVE_FIGURES = derivative_figure_names(config) if "derivative" in config else []
+
+
+def derivative_ensembles(wildcards):
+    """The two ensembles (model volume, model derivative) the derivative step compares, if any."""
+    e = compared_ensembles(config) if "derivative" in config else None
+    return {} if not e else {k: f"{RESULTS}/ensemble/{e[k]}/ensemble.nc" for k in ("full", "derivative")}
 
 
 def broaching_outputs(which="nc"):

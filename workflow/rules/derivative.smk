@@ -3,6 +3,7 @@ rule derivative:
     wildcard_constraints:
         ship=derivative_ship(),
     input:
+        unpack(derivative_ensembles),
         ship=ship_yaml,
         hull=hull_source,
     output:
@@ -10,7 +11,7 @@ rule derivative:
         validation=f"{RESULTS}/validation/{{ship}}_derivative.nc",
         figures=[f"{RESULTS}/derivative/{{ship}}_{f}.png" for f in DERIVATIVE_FIGURES],
     params:
-        config={k: config[k] for k in ("derivative",) if k in config},
+        config={k: config[k] for k in ("derivative", "ensembles") if k in config},
         ships_dir=SHIPS_DIR,
         names=DERIVATIVE_FIGURES,
     log:

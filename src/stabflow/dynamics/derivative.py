@@ -55,6 +55,10 @@ CALM_TERMS = EVEN_TERMS + ODD_TERMS
 WAVE_TERMS = tuple(e for d in range(4) for e in product(range(4), repeat=3) if sum(e) == d)
 
 
+_CEXP = np.array(CALM_TERMS, np.int64)
+_WEXP = np.array(WAVE_TERMS, np.int64)
+
+
 def term_names(terms) -> list[str]:
     """Readable monomials, e.g. (1, 2, 0) -> 'z phi^2'; (0, 0, 0) -> '1'."""
     out = []
@@ -286,6 +290,15 @@ def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: floa
                            dataset=annotate(ds), mean_over_a2=mean2 if second_order else None)
 
 
+def step_derivative(dm: DerivativeModel, ctab: np.ndarray, dt: float, n0: int, n1: int, s, phi_cap: float,
+                    out: np.ndarray) -> int:
+    """RK4 steps n0..n1 of the derivative model on the coefficient table ``ctab`` (2 nsteps + 1, 3,
+    n_wave) of its record from state ``s`` (N_STATE,); ``out`` receives the states; returns the last
+    step done (below n1 when |roll| passed ``phi_cap`` [rad])."""
+    return KD._simulate_derivative(dm.p, dm.q0, dm.minv, dm.damping, dm.calm, _CEXP, ctab, _WEXP, dt, n0, n1,
+                                   np.asarray(s, float), phi_cap, out)
+
+
 def run_derivative(dm: DerivativeModel, waves, duration: float, dt: float, *, s0=None, n_start: int = 0,
                    n_end: int | None = None, phi_cap_deg: float = 90.0, out=None):
     """States (nsteps + 1, N_STATE) of the derivative model (same layout as the time-domain model;
@@ -297,9 +310,7 @@ def run_derivative(dm: DerivativeModel, waves, duration: float, dt: float, *, s0
     ctab = dm.coefficient_table(waves, t_half)
     out = np.empty((nsteps + 1, K.N_STATE)) if out is None else out
     s = dm.s0 if s0 is None else np.asarray(s0, float)
-    last = KD._simulate_derivative(dm.p, dm.q0, dm.minv, dm.damping, dm.calm, np.array(CALM_TERMS, np.int64), ctab,
-                                   np.array(WAVE_TERMS, np.int64), dt, n_start, n_end, s, np.radians(phi_cap_deg), out)
-    return out, last
+    return out, step_derivative(dm, ctab, dt, n_start, n_end, s, np.radians(phi_cap_deg), out)
 
 
 def encounter_to_wave_frequency(we: float, speed: float, heading_deg: float) -> float:
@@ -395,6 +406,8 @@ def study_condition(cfg: dict) -> dict:
             "duration": float(cfg["map"]["duration"])}
     if cfg.get("kg") is not None:
         cond["kg"] = float(cfg["kg"])
+    if cfg.get("dynamics"):
+        cond["dynamics"] = dict(cfg["dynamics"])  # null or {}: the ship file's
     return cond
 
 
@@ -430,3 +443,85 @@ def derivative_study(ship, cfg: dict, progress: bool = False):
     ds.attrs.update(rm.attrs)
     ds.attrs.update(ship=ship.name, kg=float(model.st["kg"]), gm=float(model.st["gm"]), stations=len(model.sec.x))
     return model, dm, annotate(ds)
+
+
+def record_variances(ens: xr.Dataset, dof: str) -> np.ndarray:
+    """Each record's own variance of ``dof`` (heave [m^2], roll or pitch [deg^2]) from the ensemble's
+    per-record moment sums."""
+    S = ens["moment_sums"].sel(dof=dof)
+    n = ens["steps"].values.astype(float) + 1.0
+    m1 = S.sel(order=1).values / n
+    return S.sel(order=2).values / n - m1**2
+
+
+def exceedance_probability(roll_max, level: float, alpha: float = 0.05) -> tuple[float, float, float]:
+    """Share of records whose largest |roll| [deg] exceeds ``level`` [deg], with its Clopper-Pearson
+    interval."""
+    from scipy import stats
+
+    x = np.asarray(roll_max, float)
+    k, n = int(np.sum(x > level)), len(x)
+    lo = stats.beta.ppf(alpha / 2, k, n - k + 1) if k > 0 else 0.0
+    hi = stats.beta.ppf(1 - alpha / 2, k + 1, n - k) if k < n else 1.0
+    return k / n, float(lo), float(hi)
+
+
+def wave_autocorrelation(components, lags) -> np.ndarray:
+    """Autocorrelation of the long-crested wave elevation at a fixed point for the components
+    (amp, omega, phase): sum a^2 cos(omega tau) / sum a^2 (its repetition shows self-repeating seas)."""
+    amp, omega, _ = (np.asarray(a, float) for a in components)
+    a2 = amp**2
+    return np.array([np.sum(a2 * np.cos(omega * t)) for t in np.asarray(lags, float)]) / np.sum(a2)
+
+
+def irregular_map(ship, cfg: dict, progress: bool = False) -> xr.Dataset:
+    """Roll sigma and P(largest roll of a record > level) over speed x peak period for both models
+    (``cfg`` the ``derivative.irregular_map`` section; the loading, heading and fit of the section)."""
+    from tqdm import tqdm
+
+    from stabflow.statistics.ensemble import build_model, simulate_record
+
+    mp = cfg["irregular_map"]
+    level = float(cfg["level_deg"])
+    speeds, tps = list(mp["speeds_kn"]), list(mp["tps"])
+    shape = (len(speeds), len(tps))
+    out = {f"{k}_{m}": np.zeros(shape) for k in ("sigma", "p", "p_lower", "p_upper") for m in ("full", "derivative")}
+    bar = tqdm(total=2 * len(speeds) * len(tps), desc="irregular map", disable=not progress, mininterval=10)
+    for i, v in enumerate(speeds):
+        for j, tp in enumerate(tps):
+            for kind in ("full", "derivative"):
+                cond = dict(study_condition(cfg), name="map", speed_kn=float(v), dt=float(mp["dt"]),
+                            duration=float(mp["duration"]), seed=int(mp["seed"]),
+                            model="volume" if kind == "full" else "derivative", derivative_fit=dict(cfg["fit"]),
+                            dynamics=dict(cfg.get("dynamics") or {}),
+                            sea={"spectrum": "jonswap", "hs": float(mp["hs"]), "tp": float(tp), "gamma": float(mp["gamma"]),
+                                 "n_components": int(mp["n_components"]), "discretisation": "equal_energy"})
+                model = build_model(ship, cond)
+                roll, mx = [], []
+                for r in range(int(mp["records"])):
+                    st, last = simulate_record(model, r)
+                    x = np.degrees(st[: last + 1, K.S_ROLL])
+                    roll.append(x)
+                    mx.append(np.max(np.abs(x)) if last == model.nsteps else 180.0)
+                out[f"sigma_{kind}"][i, j] = float(np.std(np.concatenate(roll)))
+                p, lo, hi = exceedance_probability(mx, level)
+                out[f"p_{kind}"][i, j], out[f"p_lower_{kind}"][i, j], out[f"p_upper_{kind}"][i, j] = p, lo, hi
+                bar.update()
+    bar.close()
+    dims = ("map_speed", "map_tp")
+    ds = xr.Dataset({f"map_{k}": (dims, v) for k, v in out.items()},
+                    coords={"map_speed": np.asarray(speeds, float), "map_tp": np.asarray(tps, float)},
+                    attrs={"map_hs": float(mp["hs"]), "map_records": int(mp["records"]),
+                           "map_record_duration": float(mp["duration"]), "map_level_deg": level})
+    return annotate(ds)
+
+
+def compared_ensembles(config: dict) -> dict | None:
+    """{"full": key, "derivative": key} of the first ``model: derivative`` ensemble condition of the
+    derivative section's ship with ``compare_with`` (the model volume condition of the same sea),
+    or None."""
+    ship = config["derivative"]["ship"]
+    for c in config.get("ensembles", []):
+        if c.get("model", "volume") == "derivative" and c.get("compare_with") and c["ship"] == ship:
+            return {"full": f"{ship}_{c['compare_with']}", "derivative": f"{ship}_{c['name']}"}
+    return None

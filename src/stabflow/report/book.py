@@ -377,8 +377,49 @@ def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | Non
                              "steady": f"{'yes' if int(c['steady_full']) else 'no'} / "
                                        f"{'yes' if int(c['steady_derivative']) else 'no'}"})
     fit = {f: float(d["calm_residual"].sel(force=f) / d["calm_rms"].sel(force=f)) for f in ("heave", "roll", "pitch")}
+    irregular = None
+    from stabflow.dynamics.derivative import compared_ensembles
+
+    ens = compared_ensembles(config)
+    if ens:
+        from stabflow.dynamics.derivative import exceedance_probability, record_variances
+
+        figs.update(_optional_figures(results, figdir, f"derivative/{ship}_{{}}.png", ("irregular", "running")))
+        level = float(config["derivative"].get("level_deg", 25.0))
+        irregular = {"level": level, "models": []}
+        for kind in ("full", "derivative"):
+            f = results / "ensemble" / ens[kind] / "ensemble.nc"
+            if not f.exists():
+                continue
+            e = _open(f)
+            rv, pv = record_variances(e, "roll"), record_variances(e, "pitch")
+            p, lo, hi = exceedance_probability(e["roll_max"].values, level)
+            irregular["models"].append({
+                "name": {"full": "full volume-based", "derivative": "derivative"}[kind], "key": ens[kind],
+                "hours": float(e["exposure_hours"]), "records": int(e.sizes["record"]),
+                "roll_std": float(e["roll_std"]), "pitch_std": float(e["pitch_std"]), "p": p, "lo": lo, "hi": hi,
+                "roll_cv": float(np.std(rv) / np.mean(rv)), "pitch_cv": float(np.std(pv) / np.mean(pv)),
+                "roll_min": float(np.sqrt(rv.min())), "roll_maxsd": float(np.sqrt(rv.max())),
+                "cpu": _benchmark_seconds(results, f"ensemble/{ens[kind]}_[0-9]*.tsv")})
+            irregular.update(hs=float(e.attrs["hs"]), tp=float(e.attrs["tp"]), duration=float(e.attrs["duration"]),
+                             n_components=int(e.attrs["n_components"]))
+    if "map_speed" in d.coords:
+        figs.update(_optional_figures(results, figdir, f"derivative/{ship}_{{}}.png", ("irregular_map",)))
     return _render("parametric_roll.md.j2", ship=ship, a=d.attrs, rows=rows, fit=fit, figures=figs,
-                   cpu_full=float(d["cpu_full"]), cpu_deriv=float(d["cpu_derivative"]), cells=int(d["roll_full"].size))
+                   cpu_full=float(d["cpu_full"]), cpu_deriv=float(d["cpu_derivative"]), cells=int(d["roll_full"].size),
+                   irregular=irregular, has_map="map_speed" in d.coords)
+
+
+def _benchmark_seconds(results: Path, pattern: str) -> float | None:
+    """Summed CPU seconds of the Snakemake benchmark files ``results/benchmarks/<pattern>``, None if none."""
+    total, found = 0.0, False
+    for f in sorted((results / "benchmarks").glob(pattern)):
+        with open(f) as fh:
+            rec = list(csv.DictReader(fh, delimiter="\t"))
+        if rec and "cpu_time" in rec[0]:
+            total += float(rec[0]["cpu_time"])
+            found = True
+    return total if found else None
 
 
 #: validation steps in report order: (step attribute, title, file suffix)

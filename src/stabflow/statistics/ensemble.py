@@ -56,6 +56,8 @@ class Model:
     roll_period: float
     #: the 6-DOF inputs (``dof: 6`` conditions, :mod:`stabflow.dynamics.manoeuvring`), None for 3-DOF
     six: object = None
+    #: the fitted derivative model (``model: derivative`` conditions, :mod:`stabflow.dynamics.derivative`)
+    derivative: object = None
 
     @property
     def dt(self) -> float:
@@ -95,8 +97,20 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
         six = build_six_dof(sec, st, co, s.rho, float(cond["heading_deg"]), float(cond["speed_kn"]) * KNOT,
                             manoeuvring_from_ship(s, sec, st), tables=tables)
     sea = Seaway.from_config(cond["sea"]) if "sea" in cond else None  # regular-wave studies have none
-    return Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth,
-                 co.natural_period("roll"), six)
+    model = Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth, co.natural_period("roll"), six)
+    if cond.get("model", "volume") == "derivative":
+        if six is not None:
+            from stabflow import StabflowError
+
+            raise StabflowError(f"config: ensembles: {cond.get('name', '?')}: model: derivative is a heave-roll-pitch "
+                                "model (3 DOF); it cannot run with dof: 6")
+        from stabflow.config import derivative_fit_settings
+        from stabflow.dynamics.derivative import fit_for
+
+        fit = derivative_fit_settings(cond.get("derivative_fit", {}))
+        e = sea.edges()  # transfer functions over the seaway's frequencies
+        model.derivative = fit_for(model, fit, np.linspace(float(e[0]), float(e[-1]), int(fit["frequencies"])))
+    return model
 
 
 def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
@@ -107,33 +121,65 @@ def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
                               model.depth, dtype=dtype)
 
 
+def record_table(model: Model, record: int):
+    """The record's excitation on the half-step grid, computed once per record: the stations' wave
+    table (volume-based 3-DOF), the derivative model's coefficient table, or None (6-DOF: the wave
+    is tabulated around the ship chunk by chunk)."""
+    if model.six is not None:
+        return None
+    if model.derivative is not None:
+        t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
+        return model.derivative.coefficient_table(model.sea.components(model.cond["seed"], record), t_half,
+                                                  dtype=np.float32)
+    return wave_table(model, record)
+
+
+def state_size(model: Model) -> int:
+    """Length of the state vector of the condition's model (6-DOF carries the rudder and autopilot)."""
+    if model.six is not None:
+        from stabflow.dynamics._kernels_6dof import N_STATE6
+
+        return N_STATE6
+    return N_STATE
+
+
+def advance(model: Model, record: int, table, s, n0: int, n1: int, out: np.ndarray, phi_cap: float = np.radians(90.0),
+            components=None) -> int:
+    """Steps ``n0`` to ``n1`` of record ``record`` from state ``s`` (at step n0) on the time grid,
+    with the record's ``table`` (:func:`record_table`); ``out`` (nsteps + 1, state size) receives rows
+    n0..; returns the last step done (below n1 when |roll| passed ``phi_cap`` [rad])."""
+    s = np.asarray(s, float).copy()
+    if model.six is not None:
+        from stabflow.dynamics.manoeuvring import run_six_dof
+
+        comps = model.sea.components(model.cond["seed"], record) if components is None else components
+        st6, n, _ = run_six_dof(model.six, comps, (n1 - n0) * model.dt, model.dt, phi_cap_deg=np.degrees(phi_cap),
+                                s0=s, t0=n0 * model.dt)
+        out[n0: n0 + n + 1] = st6
+        return n0 + n
+    if model.derivative is not None:
+        from stabflow.dynamics.derivative import step_derivative
+
+        return step_derivative(model.derivative, table, model.dt, n0, n1, s, phi_cap, out)
+    return _simulate(*kernel_args(model.sec, model.tables), model.p, table, model.dt, n0, n1, s, phi_cap, out,
+                     np.empty((0, 6)))
+
+
 def simulate_record(model: Model, record: int, s_start=None, n_start: int = 0, n_end: int | None = None,
                     phi_cap_deg: float = 90.0, wtab=None):
     """Regenerate record ``record`` (optionally from state ``s_start`` at step ``n_start`` up to step
-    ``n_end``). Returns (states (nsteps + 1, N_STATE) — rows before ``n_start`` unset — and the last step
-    done). Bit-identical to the same steps of the ensemble run.
+    ``n_end``; ``wtab`` the record's table when already computed). Returns (states (nsteps + 1, state
+    size) — rows before ``n_start`` unset — and the last step done). Bit-identical to the same steps
+    of the ensemble run.
 
-    6-DOF conditions: states (nsteps + 1, N_STATE6) with the rudder and autopilot states; bit-identical
-    to the ensemble run from the start of the record; a restart inside it tabulates the wave around
-    the ship on other chunks (float32 table values, differences of order 1e-7 relative)."""
+    6-DOF conditions: states with the rudder and autopilot states; bit-identical to the ensemble run
+    from the start of the record; a restart inside it tabulates the wave around the ship on other
+    chunks (float32 table values, differences of order 1e-7 relative)."""
     n_end = model.nsteps if n_end is None else n_end
-    if model.six is not None:
-        from stabflow.dynamics._kernels_6dof import N_STATE6
-        from stabflow.dynamics.manoeuvring import run_six_dof
-
-        out = np.empty((model.nsteps + 1, N_STATE6))
-        s0 = model.six.s0 if s_start is None else np.asarray(s_start, float)
-        states, n, _ = run_six_dof(model.six, model.sea.components(model.cond["seed"], record),
-                                   (n_end - n_start) * model.dt, model.dt, phi_cap_deg=phi_cap_deg, s0=s0,
-                                   t0=n_start * model.dt)
-        out[n_start: n_start + n + 1] = states
-        return out, n_start + n
-    wtab = wave_table(model, record) if wtab is None else wtab
-    out = np.empty((model.nsteps + 1, N_STATE))
-    s0 = model.s0 if s_start is None else np.asarray(s_start, float)
-    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, model.dt, n_start, n_end, s0,
-                     np.radians(phi_cap_deg), out, np.empty((0, 6)))
-    return out, last
+    table = record_table(model, record) if wtab is None else wtab
+    out = np.empty((model.nsteps + 1, state_size(model)))
+    s0 = (model.six.s0 if model.six is not None else model.s0) if s_start is None else s_start
+    return out, advance(model, record, table, s0, n_start, n_end, out, np.radians(phi_cap_deg))
 
 
 def bins(cond: dict) -> dict[str, np.ndarray]:
@@ -226,6 +272,20 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
                                surf_min_s=float(cond["surf_min_s"]), heading_deg=float(cond["heading_deg"]))
             per[-1].update(broached=ev["broach"], broach_time=ev["broach_time"] if ev["broach"] else np.nan,
                            surf_riding=ev["surf_riding"])
+            if r < cond["samples"]:
+                samples[r] = (out, int(last), wave_mid)
+            bar.update()
+        bar.close()
+        return shard_dataset(model, recs, per, samples, edges)
+    if model.derivative is not None:
+        # derivative model: one record at a time (its kernel is cheap; the coefficient table dominates)
+        t_mid = np.arange(model.nsteps + 1) * model.dt
+        for r in recs:
+            out, last = simulate_record(model, r)
+            amp, w, ph = model.sea.components(cond["seed"], r)
+            wave_mid = station_wave_table(amp, w, ph, model.sec.x[[model.mid_station]], cond["heading_deg"], model.speed,
+                                          t_mid)[:, 0, 0]
+            per.append(record_statistics(model, r, out, int(last), wave_mid))
             if r < cond["samples"]:
                 samples[r] = (out, int(last), wave_mid)
             bar.update()

@@ -51,9 +51,8 @@ import xarray as xr
 from scipy import stats
 
 from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
-from stabflow.dynamics.manoeuvring import run_six_dof
 from stabflow.dynamics.tables import kernel_args
-from stabflow.statistics.ensemble import Model, simulate_record, wave_table
+from stabflow.statistics.ensemble import Model, advance, record_table, simulate_record
 from stabflow.waves.synthesis import station_wave_table
 from stabflow.statistics.extremes import decluster
 from stabflow.statistics.tail import shape_share
@@ -111,11 +110,19 @@ def poisson_interval(k: int, hours: float, alpha: float = 0.05):
 def sub_step(model: Model, components, s: np.ndarray, t0: float, tau: float) -> np.ndarray:
     """One RK4 step of length ``tau`` [s] from state ``s`` at time ``t0`` [s], off the record's time
     grid: the waves of the record's ``components`` (amp, omega, phase) are synthesized at t0,
-    t0 + tau / 2 and t0 + tau (the same float32 tables as the ensemble's). Returns the new state."""
-    amp, w, ph = components
-    tab = station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed,
-                             np.array([t0, t0 + 0.5 * tau, t0 + tau]), model.depth, dtype=np.float32)
+    t0 + tau / 2 and t0 + tau (the same float32 tables as the ensemble's; the derivative model's
+    coefficients likewise). Returns the new state."""
+    times = np.array([t0, t0 + 0.5 * tau, t0 + tau])
     out = np.empty((2, N_STATE))
+    if model.derivative is not None:
+        from stabflow.dynamics.derivative import step_derivative
+
+        step_derivative(model.derivative, model.derivative.coefficient_table(components, times, dtype=np.float32), tau,
+                        0, 1, s, np.inf, out)
+        return out[1]
+    amp, w, ph = components
+    tab = station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, times, model.depth,
+                             dtype=np.float32)
     _simulate(*kernel_args(model.sec, model.tables), model.p, tab, tau, 0, 1, np.asarray(s, float), np.inf, out,
               np.empty((0, 6)))
     return out[1]
@@ -161,8 +168,8 @@ def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t
     converges to the unperturbed solution). Returns (outcome, last step done): 1 capsized (roll
     beyond 90 deg), 0 returned, -1 neither by step n1.
 
-    6-DOF conditions: ``s_c`` is the grid state at step n0 + 1 (:func:`crossing_state`), perturbed there;
-    ``wtab`` is unused (the wave is tabulated around the ship chunk by chunk)."""
+    ``wtab`` is the record's table (:func:`stabflow.statistics.ensemble.record_table`). 6-DOF
+    conditions: ``s_c`` is the grid state at step n0 + 1 (:func:`crossing_state`), perturbed there."""
     cap = np.radians(90.0)
     s = s_c.copy()
     s[S_RATE + S_ROLL] += side * np.radians(delta_deg)
@@ -172,7 +179,6 @@ def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t
     k = n0 + 1
     w = 2 * np.pi / model.roll_period
     chunk = max(1, int(round(0.25 * model.roll_period / model.dt)))
-    args = kernel_args(model.sec, model.tables)
     while True:
         if abs(buf[k, S_ROLL]) > cap:
             return 1, k
@@ -183,13 +189,7 @@ def perturbed_run(model: Model, components, wtab: np.ndarray, s_c: np.ndarray, t
         if k >= n1:
             return -1, k
         k1 = min(k + chunk, n1)
-        if model.six is None:
-            last = _simulate(*args, model.p, wtab, model.dt, k, k1, buf[k].copy(), cap, buf, np.empty((0, 6)))
-        else:
-            st6, n, _ = run_six_dof(model.six, components, (k1 - k) * model.dt, model.dt, s0=buf[k].copy(),
-                                    t0=k * model.dt)
-            buf[k: k + n + 1] = st6
-            last = k + n
+        last = advance(model, -1, wtab, buf[k], k, k1, buf, cap, components=components)
         if last < k1:
             return 1, last
         k = k1
@@ -277,7 +277,7 @@ def critical_perturbations(model: Model, records, steps, sides, levels, follow: 
     def one_record(r):
         idx = np.nonzero(records == r)[0]
         idx = idx[np.argsort(steps[idx], kind="stable")]
-        wtab = wave_table(model, int(r)) if model.six is None else None
+        wtab = record_table(model, int(r))
         comps = model.sea.components(model.cond["seed"], int(r))
         states, last = simulate_record(model, int(r), wtab=wtab)
         buf = np.empty_like(states)
@@ -418,7 +418,7 @@ def perturbed_histories(model: Model, record: int, step: int, side: int, deltas,
     at the exact crossing of ``side * level_deg`` after ``step``, as in :func:`critical_perturbations`)
     over ``window`` steps (paper 003 Fig. 4). Returns (t [s], unperturbed, list of runs), starting at
     the crossing instant."""
-    wtab = wave_table(model, int(record)) if model.six is None else None
+    wtab = record_table(model, int(record))
     comps = model.sea.components(model.cond["seed"], int(record))
     states, last = simulate_record(model, int(record), wtab=wtab)
     tc, sc = crossing_state(model, comps, states, step, np.radians(side * level_deg))

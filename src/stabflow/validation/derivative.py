@@ -7,6 +7,8 @@
 | small regular waves: steady heave and pitch amplitudes | the full model in the same waves | 3 % | consistency |
 | regular-wave map: steady parametric-roll amplitude per cell where both models are steady above 5 deg | the full model | 10 % (issue 18) | consistency |
 | regular-wave map: cells classified alike (parametric roll above 5 deg or not) | the full model | share >= 0.8 (stabflow's criterion) | consistency |
+| irregular seas (two ensembles of one sea): roll sigma; P(largest roll of a record > 25 deg); mean frequency of the roll spectrum | the full model's ensemble | 10 %; inside its 95 % interval; 5 % | consistency |
+| no self-repetition: wave autocorrelation from 10 min to the record length | 0 | 0.1 (stabflow's criterion) | independent |
 """
 
 from __future__ import annotations
@@ -118,4 +120,40 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
     rows.append(Check(f"derivative model: map cells classified alike (parametric roll above {PARAMETRIC_DEG:g} deg or "
                       f"not; {int(pf.sum())} full, {int(pd.sum())} derivative of {pf.size})", share, 0.0, "1", ref,
                       "consistency", lower=0.8, upper=1.0))
+    return rows
+
+
+def irregular_checks(full: xr.Dataset, der: xr.Dataset, level: float = 25.0, seaway=None, seed: int = 0) -> list[Check]:
+    """Irregular seas, the two ensembles of the same sea (volume and derivative model): roll sigma
+    within 10 % (issue 18's criterion), the derivative model's P(largest roll of a record > level)
+    inside the full model's 95 % Clopper-Pearson interval, the roll spectra's mean frequency within
+    5 %, and (with ``seaway``) no self-repetition of the records' sea: the wave autocorrelation
+    below 0.1 at every lag from 10 min to the record length (stabflow's criterion)."""
+    from stabflow.dynamics.derivative import exceedance_probability, wave_autocorrelation
+
+    rows = []
+    ref = f"the same sea with the full volume-based model ({full.attrs['n_records']} records of {full.attrs['duration']:g} s)"
+    hours = float(full["exposure_hours"])
+    rows.append(Check(f"derivative model, irregular seas ({hours:.0f} h): roll sigma relative to the full model",
+                      float(der["roll_std"] / full["roll_std"] - 1), 0.10, "1", ref, "consistency"))
+    pf, lo, hi = exceedance_probability(full["roll_max"].values, level)
+    pd, _, _ = exceedance_probability(der["roll_max"].values, level)
+    rows.append(Check(f"derivative model, irregular seas: P(largest roll of a record > {level:g} deg) = {pd:.2f}, "
+                      f"full model {pf:.2f} [{lo:.2f}, {hi:.2f}]", pd, 0.0, "1", ref, "consistency", lower=lo, upper=hi))
+    # the spectra's mean frequency m1 / m0 (their Welch resolution, 2 pi / segment, is too coarse for
+    # the peak of a narrow roll spectrum: the largest bin flips between neighbours)
+    w = full["frequency"].values
+    mean_w = [float(np.sum(w * e["roll_psd"].values) / np.sum(e["roll_psd"].values)) for e in (full, der)]
+    rows.append(Check(f"derivative model, irregular seas: mean frequency m1/m0 of the roll spectrum "
+                      f"({mean_w[1]:.3f} rad/s) relative to the full model's ({mean_w[0]:.3f})",
+                      mean_w[1] / mean_w[0] - 1, 0.05, "1", ref, "consistency"))
+    if seaway is not None:
+        dur = float(full.attrs["duration"])
+        lags = np.arange(600.0, dur, 1.0)
+        r = float(np.max(np.abs(wave_autocorrelation(seaway.components(seed, 0), lags))))
+        rows.append(Check(f"seaway of the ensembles: largest |wave autocorrelation| at lags 600 s to {dur:g} s "
+                          f"({seaway.n_components} components, {seaway.method}, random frequencies "
+                          f"{'on' if seaway.randomise else 'off'}): no self-repetition", r, 0.1, "1",
+                          "0 for a non-repeating sea (paper 001: 3100 components against the self-repeating effect)",
+                          "independent"))
     return rows

@@ -482,4 +482,6 @@ def ensemble_checks(model, ens: xr.Dataset, extremes: xr.Dataset | None = None,
         split-time rows (two per threshold); see the module docstring for references, tolerances and
         kinds. A row that cannot be computed is a FAIL row with the reason.
     """
-    return seaway_checks(model) + step_checks(model, ens) + extremes_checks(extremes) + splittime_checks(splittime)
+    records = int(model.cond.get("validation_records", CONVERGENCE_RECORDS))
+    return (seaway_checks(model) + step_checks(model, ens, records) + extremes_checks(extremes)
+            + splittime_checks(splittime))

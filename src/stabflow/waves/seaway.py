@@ -90,7 +90,8 @@ class Seaway:
                 d2 = 1.0
                 w1u = span / n2
             else:
-                d2 = brentq(lambda r: w1 * (r**n2 - 1) / (r - 1) - span, 1 + 1e-12, 10.0)
+                # upper bracket kept below overflow of r^n2 (thousands of components)
+                d2 = brentq(lambda r: w1 * (r**n2 - 1) / (r - 1) - span, 1 + 1e-12, min(10.0, np.exp(600.0 / n2)))
                 w1u = w1
             above = w0 + w1u * np.cumsum(d2 ** np.arange(n2))
             above[-1] = hi
