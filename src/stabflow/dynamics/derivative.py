@@ -466,12 +466,15 @@ def exceedance_probability(roll_max, level: float, alpha: float = 0.05) -> tuple
     return k / n, float(lo), float(hi)
 
 
-def wave_autocorrelation(components, lags) -> np.ndarray:
+def wave_autocorrelation(components, lags, envelope: bool = False) -> np.ndarray:
     """Autocorrelation of the long-crested wave elevation at a fixed point for the components
-    (amp, omega, phase): sum a^2 cos(omega tau) / sum a^2 (its repetition shows self-repeating seas)."""
+    (amp, omega, phase): sum a^2 cos(omega tau) / sum a^2; with ``envelope`` its envelope
+    |sum a^2 exp(i omega tau)| / sum a^2, which returns to 1 where the record repeats itself (equally
+    spaced frequencies: every 2 pi / d omega, whatever the carrier's phase there)."""
     amp, omega, _ = (np.asarray(a, float) for a in components)
     a2 = amp**2
-    return np.array([np.sum(a2 * np.cos(omega * t)) for t in np.asarray(lags, float)]) / np.sum(a2)
+    z = np.array([np.sum(a2 * np.exp(1j * omega * t)) for t in np.asarray(lags, float)]) / np.sum(a2)
+    return np.abs(z) if envelope else z.real
 
 
 def irregular_map(ship, cfg: dict, progress: bool = False) -> xr.Dataset:

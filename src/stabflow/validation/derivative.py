@@ -8,7 +8,7 @@
 | regular-wave map: steady parametric-roll amplitude per cell where both models are steady above 5 deg | the full model | 10 % (issue 18) | consistency |
 | regular-wave map: cells classified alike (parametric roll above 5 deg or not) | the full model | share >= 0.8 (stabflow's criterion) | consistency |
 | irregular seas (two ensembles of one sea): roll sigma; P(largest roll of a record > 25 deg); mean frequency of the roll spectrum | the full model's ensemble | 10 %; inside its 95 % interval; 5 % | consistency |
-| no self-repetition: wave autocorrelation from 10 min to the record length | 0 | 0.1 (stabflow's criterion) | independent |
+| no self-repetition: envelope of the wave autocorrelation from 10 min to the record length | 0 | 0.1 (stabflow's criterion) | independent |
 """
 
 from __future__ import annotations
@@ -127,8 +127,8 @@ def irregular_checks(full: xr.Dataset, der: xr.Dataset, level: float = 25.0, sea
     """Irregular seas, the two ensembles of the same sea (volume and derivative model): roll sigma
     within 10 % (issue 18's criterion), the derivative model's P(largest roll of a record > level)
     inside the full model's 95 % Clopper-Pearson interval, the roll spectra's mean frequency within
-    5 %, and (with ``seaway``) no self-repetition of the records' sea: the wave autocorrelation
-    below 0.1 at every lag from 10 min to the record length (stabflow's criterion)."""
+    5 %, and (with ``seaway``) no self-repetition of the records' sea: the envelope of the wave
+    autocorrelation below 0.1 at every lag from 10 min to the record length (stabflow's criterion)."""
     from stabflow.dynamics.derivative import exceedance_probability, wave_autocorrelation
 
     rows = []
@@ -150,8 +150,8 @@ def irregular_checks(full: xr.Dataset, der: xr.Dataset, level: float = 25.0, sea
     if seaway is not None:
         dur = float(full.attrs["duration"])
         lags = np.arange(600.0, dur, 1.0)
-        r = float(np.max(np.abs(wave_autocorrelation(seaway.components(seed, 0), lags))))
-        rows.append(Check(f"seaway of the ensembles: largest |wave autocorrelation| at lags 600 s to {dur:g} s "
+        r = float(np.max(wave_autocorrelation(seaway.components(seed, 0), lags, envelope=True)))
+        rows.append(Check(f"seaway of the ensembles: largest envelope of the wave autocorrelation at lags 600 s to {dur:g} s "
                           f"({seaway.n_components} components, {seaway.method}, random frequencies "
                           f"{'on' if seaway.randomise else 'off'}): no self-repetition", r, 0.1, "1",
                           "0 for a non-repeating sea (paper 001: 3100 components against the self-repeating effect)",
