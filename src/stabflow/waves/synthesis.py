@@ -23,6 +23,9 @@ from stabflow.waves._kernels import _trig_table
 
 from stabflow.constants import G
 
+#: memory of one block of time factors in :func:`_time_series_table` [bytes]
+TRIG_BLOCK_BYTES = 64 * 2**20
+
 
 def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     """sum_n [C_pn cos(we_n t) + D_pn sin(we_n t)] for every column p of ``cols`` (a list of (C, D)
@@ -39,9 +42,17 @@ def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     for q, (c, d) in enumerate(cols):
         coef[:nc, :, q] = c.T
         coef[nc:, :, q] = d.T
-    trig = np.empty((len(times), 2 * nc), dtype=dtype)
-    _trig_table(we, t0, dt, trig)
-    out = trig @ coef.reshape(2 * nc, npt * nq).astype(dtype)
+    coef = coef.reshape(2 * nc, npt * nq).astype(dtype)
+    out = np.empty((len(times), npt * nq), dtype=dtype)
+    # in blocks of time rows (multiples of the phasor reset interval, so the values do not depend on
+    # the block size): the time factors of thousands of components over a 3-hour record would take
+    # gigabytes at once
+    block = max(256, (TRIG_BLOCK_BYTES // max(1, 2 * nc * np.dtype(dtype).itemsize)) // 256 * 256)
+    trig = np.empty((min(block, len(times)), 2 * nc), dtype=dtype)
+    for j0 in range(0, len(times), block):
+        m = min(block, len(times) - j0)
+        _trig_table(we, t0, dt, trig[:m], j0)
+        np.matmul(trig[:m], coef, out=out[j0: j0 + m])
     return out.reshape(len(times), npt, nq)
 
 
