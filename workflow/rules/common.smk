@@ -31,9 +31,17 @@ for _step in ("broaching", "derivative"):
     if _step in config and config[_step]["ship"] not in SHIPS:
         raise ValueError(f"config: {_step}: ship {config[_step]['ship']!r} is not in ships")
 for _key, _c in ENSEMBLES.items():
-    if _c.get("compare_with") and f"{_c['ship']}_{_c['compare_with']}" not in ENSEMBLES:
-        raise ValueError(f"config: ensembles: {_key}: compare_with: {_c['compare_with']!r} is not a condition of "
-                         f"ship {_c['ship']!r} (have {sorted(ENSEMBLES)})")
+    if _c.get("compare_with"):
+        _o = ENSEMBLES.get(f"{_c['ship']}_{_c['compare_with']}")
+        if _o is None:
+            raise ValueError(f"config: ensembles: {_key}: compare_with: {_c['compare_with']!r} is not a condition of "
+                             f"ship {_c['ship']!r} (have {sorted(ENSEMBLES)})")
+        # the comparison claims the same sea, records and ship: everything but the model must match
+        _diff = [k for k in ("sea", "seed", "speed_kn", "heading_deg", "kg", "dynamics", "dt", "duration", "records",
+                             "stations", "dphi_dzdt") if _c.get(k) != _o.get(k)]
+        if _diff:
+            raise ValueError(f"config: ensembles: {_key}: compare_with: {_c['compare_with']!r} differs in "
+                             f"{', '.join(_diff)}; the two conditions must be the same sea and ship")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")

@@ -43,7 +43,7 @@ from stabflow.dynamics import _kernels_derivative as KD
 from stabflow.dynamics.rigid_body import generalized_system
 from stabflow.dynamics.tables import kernel_args
 from stabflow.io import annotate
-from stabflow.waves.synthesis import _time_series_table, station_wave_table
+from stabflow.waves.synthesis import _time_series_table, encounter_frequency, station_wave_table
 
 FORCES = ("heave", "roll", "pitch")
 #: calm-water restoring terms (z, phi, theta exponents), paper 001 eqs 1-3
@@ -134,7 +134,7 @@ class DerivativeModel:
             T[:, j] = np.interp(omega, self.frequency, flat[:, j].real) + 1j * np.interp(omega, self.frequency,
                                                                                        flat[:, j].imag)
         T[~inside] = 0.0
-        we = omega - omega**2 / G * self.speed * np.cos(np.radians(self.heading_deg))
+        we = encounter_frequency(omega, self.speed, self.heading_deg)
         ce, se = np.cos(phase), np.sin(phase)
         C = (amp[None, :] * (T.real.T * ce - T.imag.T * se))
         D = (amp[None, :] * (T.real.T * se + T.imag.T * ce))
@@ -430,8 +430,12 @@ def fit_for(model, fit: dict, frequencies=None) -> DerivativeModel:
 def derivative_study(ship, cfg: dict, progress: bool = False):
     """The derivative step: fit of ``ship`` at the section's loading, speed and heading, and the
     regular-wave map of both models. Returns (model, derivative model, dataset)."""
+    from stabflow import StabflowError
     from stabflow.statistics.ensemble import build_model
 
+    if (dict(ship.data.get("dynamics", {}), **(cfg.get("dynamics") or {}))).get("hydro") == "capytaine":
+        raise StabflowError(f"config: derivative: ship {ship.name!r} takes its added mass and damping from Capytaine "
+                            "(dynamics.hydro: capytaine), which this step does not run; give dynamics: {hydro: config}")
     model = build_model(ship, study_condition(cfg))
     dm = fit_for(model, cfg["fit"])
     mp = cfg["map"]
@@ -452,6 +456,20 @@ def record_variances(ens: xr.Dataset, dof: str) -> np.ndarray:
     n = ens["steps"].values.astype(float) + 1.0
     m1 = S.sel(order=1).values / n
     return S.sel(order=2).values / n - m1**2
+
+
+def ergodic_variance_cv(ens: xr.Dataset, dof: str) -> float:
+    """Coefficient of variation that the per-record variance of ``dof`` would have if the process were
+    ergodic and Gaussian with the ensemble's correlation: Var(s^2) / sigma^4 = (4 / T) int_0^inf rho^2
+    dtau for records of length T (roll: the ensemble's autocorrelation up to its largest lag; heave
+    and pitch: (2 pi / T) int S^2 dw / (int S dw)^2 from the ensemble's spectrum)."""
+    T = float(ens.attrs["duration"])
+    if dof == "roll":
+        rho = ens["roll_autocorrelation"].values
+        return float(np.sqrt(4.0 / T * np.trapezoid(rho**2, ens["lag"].values)))
+    S = ens[f"{dof}_psd"].values
+    w = ens["frequency"].values
+    return float(np.sqrt(2 * np.pi / T * np.trapezoid(S**2, w) / np.trapezoid(S, w) ** 2))
 
 
 def exceedance_probability(roll_max, level: float, alpha: float = 0.05) -> tuple[float, float, float]:

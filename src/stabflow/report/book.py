@@ -267,7 +267,7 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
             stats = {**{a: float(e.attrs[a]) for a in ("hs", "tp", "speed_kn", "heading_deg")},
                      "hours": float(e.exposure_hours), "roll_std": float(e.roll_std),
                      "roll_kurtosis": float(e.kurtosis.sel(dof="roll")), "capsizes": int(e.capsize_count),
-                     "dof": int(e.attrs.get("dof", 3)),
+                     "dof": int(e.attrs.get("dof", 3)), "model": str(e.attrs.get("model", "volume")),
                      "broaches": f"{int(e.broach_count)} of {e.sizes['record']}" if "broach_count" in e else "—"}
         conditions.append({"key": k, "stats": stats, "extremes": _extremes_data(results, k, figdir),
                            "splittime": _splittime_data(results, k, figdir),
@@ -382,7 +382,7 @@ def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | Non
 
     ens = compared_ensembles(config)
     if ens:
-        from stabflow.dynamics.derivative import exceedance_probability, record_variances
+        from stabflow.dynamics.derivative import ergodic_variance_cv, exceedance_probability, record_variances
 
         figs.update(_optional_figures(results, figdir, f"derivative/{ship}_{{}}.png", ("irregular", "running")))
         level = float(config["derivative"].get("level_deg", 25.0))
@@ -399,6 +399,7 @@ def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | Non
                 "hours": float(e["exposure_hours"]), "records": int(e.sizes["record"]),
                 "roll_std": float(e["roll_std"]), "pitch_std": float(e["pitch_std"]), "p": p, "lo": lo, "hi": hi,
                 "roll_cv": float(np.std(rv) / np.mean(rv)), "pitch_cv": float(np.std(pv) / np.mean(pv)),
+                "roll_cv_ergodic": ergodic_variance_cv(e, "roll"), "pitch_cv_ergodic": ergodic_variance_cv(e, "pitch"),
                 "roll_min": float(np.sqrt(rv.min())), "roll_maxsd": float(np.sqrt(rv.max())),
                 "cpu": _benchmark_seconds(results, f"ensemble/{ens[kind]}_[0-9]*.tsv")})
             irregular.update(hs=float(e.attrs["hs"]), tp=float(e.attrs["tp"]), duration=float(e.attrs["duration"]),

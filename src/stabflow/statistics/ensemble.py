@@ -381,7 +381,7 @@ def condition_attrs(model: Model) -> dict:
             "discretisation": model.sea.method, "randomise": int(model.sea.randomise),
             "speed_kn": float(c["speed_kn"]), "heading_deg": float(c["heading_deg"]), "duration": float(c["duration"]),
             "dt": model.dt, "seed": int(c["seed"]), "stations": len(model.sec.x), "kg": float(model.st["kg"]),
-            "dof": int(c.get("dof", 3)),
+            "dof": int(c.get("dof", 3)), "model": str(c.get("model", "volume")),
             "gm": float(model.st["gm"]), "roll_period": model.roll_period}
 
 

@@ -433,4 +433,6 @@ def perturbed_histories(model: Model, record: int, step: int, side: int, deltas,
     base[0] = np.degrees(sc[S_ROLL])
     m = min(last, n1)
     base[1: m - step + 1] = np.degrees(states[step + 1: m + 1, S_ROLL])
+    if model.six is not None:  # the crossing state is the grid state at step + 1: drop the repeated instant
+        return t[1:], base[1:], [r[1:] for r in runs]
     return t, base, runs

@@ -6,7 +6,7 @@
 | wave excitation (constant term's transfer function) at three wave frequencies, heave and pitch | first harmonic of the FK loads on the ship held at equilibrium in a regular wave at speed, exact section clipping (:func:`stabflow.dynamics.linear.fk_excitation`) | 3 % of its modulus | consistency |
 | small regular waves: steady heave and pitch amplitudes | the full model in the same waves | 3 % | consistency |
 | regular-wave map: steady parametric-roll amplitude per cell where both models are steady above 5 deg | the full model | 10 % (issue 18) | consistency |
-| regular-wave map: cells classified alike (parametric roll above 5 deg or not) | the full model | share >= 0.8 (stabflow's criterion) | consistency |
+| regular-wave map: cells classified alike (no roll above 5 deg / steady parametric roll / unsteady or capsized) | the full model | share >= 0.8 (stabflow's criterion) | consistency |
 | irregular seas (two ensembles of one sea): roll sigma; P(largest roll of a record > 25 deg); mean frequency of the roll spectrum | the full model's ensemble | 10 %; inside its 95 % interval; 5 % | consistency |
 | no self-repetition: envelope of the wave autocorrelation from 10 min to the record length | 0 | 0.1 (stabflow's criterion) | independent |
 """
@@ -16,11 +16,12 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from stabflow.constants import G
+from stabflow.constants import G, KNOT
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics.derivative import WAVE_TERMS, DerivativeModel, run_derivative
 from stabflow.dynamics.linear import fk_excitation
 from stabflow.validation import Check
+from stabflow.waves.synthesis import encounter_frequency
 
 #: roll amplitude [deg] above which a map cell counts as parametric roll
 PARAMETRIC_DEG = 5.0
@@ -56,7 +57,7 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
         w = np.sqrt(2 * np.pi * G / lam)
         # at the fit's own amplitude: the first harmonic depends on the amplitude (odd orders)
         a = float(np.interp(w, dm.frequency, ds["fit_amplitude"].values))
-        we = abs(w - w**2 / G * model.speed * np.cos(np.radians(dm.heading_deg)))
+        we = abs(float(encounter_frequency(w, model.speed, dm.heading_deg)))
         loads = KernelLoads(model.sec, model.ship.rho, lcg, kg, (np.array([a]), np.array([w]), np.array([0.0])),
                             dm.heading_deg, model.speed, model.depth)
         F = fk_excitation(loads, h0, th0, we)
@@ -77,7 +78,7 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
     for r in wavelengths:
         lam = r * lwl
         w = np.sqrt(2 * np.pi * G / lam)
-        we = abs(w - w**2 / G * model.speed * np.cos(np.radians(dm.heading_deg)))
+        we = abs(float(encounter_frequency(w, model.speed, dm.heading_deg)))
         te = 2 * np.pi / we
         dt = min(0.1, te / 40)
         dur = max(40 * te, 400.0)
@@ -107,8 +108,9 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
         rows.append(Check(f"derivative model: steady parametric roll at omega_e/omega_roll = {x:.2f}, H = {h:g} m, "
                           "relative to the full model", float(c["roll_derivative"] / c["roll_full"] - 1), 0.10, "1", ref,
                           "consistency"))
-    pf = ds["roll_full"] > PARAMETRIC_DEG
-    pd = ds["roll_derivative"] > PARAMETRIC_DEG
+    cls = {m: xr.where(ds[f"roll_{m}"] <= PARAMETRIC_DEG, 0,
+                       xr.where((ds[f"capsized_{m}"] == 1) | (ds[f"steady_{m}"] == 0), 2, 1)) for m in ("full", "derivative")}
+    pf, pd = cls["full"] > 0, cls["derivative"] > 0
     if not cells:
         # no parametric roll anywhere in the map: nothing to compare (SKIPPED); in one model only: FAIL
         none = not bool(pf.any()) and not bool(pd.any())
@@ -116,10 +118,12 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
                           "consistency", skipped=none,
                           reason=("neither model reaches" if none else "no cell where both models reach")
                           + f" a steady roll above {PARAMETRIC_DEG:g} deg in the map"))
-    share = float((pf == pd).mean())
-    rows.append(Check(f"derivative model: map cells classified alike (parametric roll above {PARAMETRIC_DEG:g} deg or "
-                      f"not; {int(pf.sum())} full, {int(pd.sum())} derivative of {pf.size})", share, 0.0, "1", ref,
-                      "consistency", lower=0.8, upper=1.0))
+    share = float((cls["full"] == cls["derivative"]).mean())
+    counts = {m: [int((cls[m] == k).sum()) for k in (1, 2)] for m in cls}
+    rows.append(Check(f"derivative model: map cells classified alike (none / steady parametric roll above "
+                      f"{PARAMETRIC_DEG:g} deg / unsteady or capsized; full {counts['full'][0]} / {counts['full'][1]}, "
+                      f"derivative {counts['derivative'][0]} / {counts['derivative'][1]} of {pf.size})", share, 0.0, "1",
+                      ref, "consistency", lower=0.8, upper=1.0))
     return rows
 
 
@@ -150,8 +154,11 @@ def irregular_checks(full: xr.Dataset, der: xr.Dataset, level: float = 25.0, sea
     if seaway is not None:
         dur = float(full.attrs["duration"])
         lags = np.arange(600.0, dur, 1.0)
-        r = float(np.max(wave_autocorrelation(seaway.components(seed, 0), lags, envelope=True)))
-        rows.append(Check(f"seaway of the ensembles: largest envelope of the wave autocorrelation at lags 600 s to {dur:g} s "
+        amp, w, ph = seaway.components(seed, 0)
+        we = encounter_frequency(w, float(full.attrs["speed_kn"]) * KNOT, float(full.attrs["heading_deg"]))
+        r = float(np.max(wave_autocorrelation((amp, we, ph), lags, envelope=True)))  # as the ship meets it
+        rows.append(Check(f"seaway of the ensembles: largest envelope of the encountered wave's autocorrelation at lags "
+                          f"600 s to {dur:g} s "
                           f"({seaway.n_components} components, {seaway.method}, random frequencies "
                           f"{'on' if seaway.randomise else 'off'}): no self-repetition", r, 0.1, "1",
                           "0 for a non-repeating sea (paper 001: 3100 components against the self-repeating effect)",

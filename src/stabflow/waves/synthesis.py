@@ -56,6 +56,13 @@ def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     return out.reshape(len(times), npt, nq)
 
 
+def encounter_frequency(omega, speed: float, heading_deg: float):
+    """Encounter frequency [rad/s] of deep-water waves of frequency ``omega`` [rad/s] for a ship at
+    ``speed`` [m/s], wave heading [degree] (0 following): w - k U cos(beta), k = w^2 / g (signed)."""
+    omega = np.asarray(omega, float)
+    return omega - omega**2 / G * speed * np.cos(np.radians(heading_deg))
+
+
 def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None,
                        dtype=np.float64) -> np.ndarray:
     """(nt, nst, nq) table of (eta, S[, dphi_zt]) at stations ``xs`` and equally spaced ``times``.
@@ -72,7 +79,7 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
     xs = np.asarray(xs, float)
     k = omega**2 / G
     cb = np.cos(np.radians(heading_deg))
-    we = omega - k * speed * cb
+    we = encounter_frequency(omega, speed, heading_deg)
     # psi = P - we t with P = k cos(beta) x + e: cos psi = cos P cos(we t) + sin P sin(we t)
     P = (k * cb)[None, :] * xs[:, None] + phase[None, :]
     cP, sP = np.cos(P), np.sin(P)
@@ -101,7 +108,7 @@ def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.f
     phase = np.asarray(phase, float)
     xi = np.asarray(xi, float)
     k = omega**2 / G
-    we = omega - k * speed * np.cos(np.radians(heading_deg))
+    we = encounter_frequency(omega, speed, heading_deg)
     P = k[None, :] * xi[:, None] + phase[None, :]
     cP, sP = np.cos(P), np.sin(P)
     ak, ak2 = amp * k, amp * k**2
