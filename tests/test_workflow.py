@@ -8,6 +8,7 @@ import sys
 import pytest
 import xarray as xr
 
+from .cluster.background import slurm_runs  # noqa: F401  (session fixture: SLURM runs started at session start)
 from .conftest import ROOT
 
 
@@ -182,17 +183,12 @@ def test_extremes_and_splittime_outputs(pipeline):
     assert "Split-time capsize rate" in page and "coverage" in page
 
 
-def test_ensemble_j1_j2_and_cluster_executor_identical(pipeline, tmp_path):
-    """-j1, the default -j2 run and the cluster-generic executor (local submit script standing in
-    for sbatch) write bit-identical ensemble files."""
+def test_ensemble_j1_j2_identical(pipeline, tmp_path):
+    """-j1 and the default -j2 run write bit-identical ensemble files (the SLURM executor: below)."""
     ref = _ensemble_files(pipeline)
     r = _ensemble_run(tmp_path / "j1")
     assert r.returncode == 0, r.stderr[-3000:]
     assert _ensemble_files(tmp_path / "j1") == ref
-    r = _ensemble_run(tmp_path / "cl", "--executor", "cluster-generic", "--cluster-generic-submit-cmd",
-                      "workflow/cluster/local_submit.sh", jobs="-j2")
-    assert r.returncode == 0, r.stderr[-3000:]
-    assert _ensemble_files(tmp_path / "cl") == ref
 
 
 def test_ensemble_killed_and_rerun_is_bit_identical(pipeline, tmp_path):
@@ -215,3 +211,42 @@ def test_ensemble_killed_and_rerun_is_bit_identical(pipeline, tmp_path):
     r = _ensemble_run(out, "--rerun-incomplete")
     assert r.returncode == 0, r.stderr[-3000:]
     assert _ensemble_files(out) == _ensemble_files(pipeline)
+
+
+def _netcdf_files(out):
+    return {str(p.relative_to(out)): p for p in sorted(out.rglob("*.nc"))}
+
+
+@pytest.mark.slurm
+def test_slurm_executor_dag_bit_identical(pipeline, slurm_runs):  # noqa: F811
+    """The whole test DAG through the SLURM executor (`snakemake --workflow-profile
+    workflow/profiles/slurm` on the throwaway cluster of tests/cluster/slurm.py, every rule a SLURM
+    job, shards with the profile's threads capped to the node) writes every NetCDF file of the local
+    -j2 run, bit-identical."""
+    run = slurm_runs.wait("dag")
+    assert run.returncode == 0, run.tail()
+    assert run.output.count("submitted with SLURM jobid") >= 25, run.tail()  # every rule a SLURM job
+    ref, got = _netcdf_files(pipeline), _netcdf_files(run.out)
+    assert len(ref) >= 25 and sorted(got) == sorted(ref), (sorted(set(ref) ^ set(got)), run.tail(2000))
+    differ = [f for f in ref if ref[f].read_bytes() != got[f].read_bytes()]
+    assert not differ, differ
+
+
+@pytest.mark.slurm
+def test_slurm_cancelled_shard_reported_and_rerun_bit_identical(pipeline, slurm_runs):  # noqa: F811
+    """scancel of a running shard's SLURM job: the workflow stops with an error naming the job and
+    its CANCELLED state, the shard has no output; the same command again completes, keeps the shards
+    that had finished and writes ensemble files bit-identical to the local run."""
+    kill = slurm_runs.wait("kill")
+    assert "jobid" in kill.notes, ("no shard job was cancelled while running", kill.notes, kill.tail())
+    jobid, shard = kill.notes["jobid"], kill.notes["shard"]
+    assert kill.returncode not in (0, None), kill.tail()
+    assert "Error in rule ensemble_shard" in kill.output and f"SLURM-job '{jobid}' failed" in kill.output, kill.tail()
+    assert "CANCELLED" in kill.output, kill.tail()
+    rerun = slurm_runs.wait("rerun")
+    assert f"shard_{shard}.nc" not in rerun.notes["kept_before"]
+    assert rerun.returncode == 0, rerun.tail()
+    out = rerun.out / ENS
+    for name, mtime in rerun.notes["kept_before"].items():
+        assert (out / name).stat().st_mtime_ns == mtime, f"{name} finished before the cancel but was redone"
+    assert _ensemble_files(rerun.out) == _ensemble_files(pipeline)

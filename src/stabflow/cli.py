@@ -145,7 +145,8 @@ def _derivative(a):
     pair = compared_ensembles(cfg)
     res = Path(cfg.get("results", "results"))
     ens = {k: str(res / "ensemble" / v / "ensemble.nc") for k, v in pair.items()} if pair else None
-    return steps.run_derivative(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs, ens)
+    return steps.run_derivative(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs, ens,
+                                cpu_tsv=a.cpu)
 
 
 COMMANDS: dict[str, Command] = {
@@ -214,7 +215,8 @@ COMMANDS: dict[str, Command] = {
                           (CONFIG, OUT, (("--validation",), {"required": True, "help": "validation rows NetCDF"}),
                            (("--figures",), {"help": "folder for <ship>_fit.png, <ship>_transfer_functions.png, "
                                                      "<ship>_map.png (and the irregular-sea figures); the "
-                                                     "ensembles are read from the config's results folder"})),
+                                                     "ensembles are read from the config's results folder"}),
+                           (("--cpu",), {"help": "TSV file for the measured CPU seconds of both models' runs"})),
                           _derivative),
     "report": Command("build the HTML report from a results folder",
                       (CONFIG, (("--results",), {"default": "results"}), (("--source",), {"default": "report"}),

@@ -141,8 +141,6 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "wave_height": ("m", "regular wave height"),
     "wave_frequency": ("rad/s", "wave frequency"),
     "wavelength": ("m", "wavelength"),
-    "cpu_full": ("s", "CPU time of the full model's runs"),
-    "cpu_derivative": ("s", "CPU time of the derivative model's runs (coefficient series included)"),
     "wave_psd_sum": ("m2 s", "sum over records of the Welch spectra of wave elevation at midships (per rad/s)"),
     "heave_psd_sum": ("m2 s", "sum over records of the Welch spectra of heave (per rad/s)"),
     "roll_psd_sum": ("degree2 s", "sum over records of the Welch spectra of roll (per rad/s)"),

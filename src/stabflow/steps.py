@@ -459,7 +459,7 @@ def derivative_figure_names(config: dict) -> list[str]:
 
 
 def run_derivative(config: dict, ships_dir, out_nc, validation_nc, figures: dict | None = None,
-                   ensembles: dict | None = None, progress: bool = True) -> xr.Dataset:
+                   ensembles: dict | None = None, progress: bool = True, cpu_tsv=None) -> xr.Dataset:
     """derivative step (issue 18): the derivative model (paper 001) fitted from the volume-based
     forces, its regular-wave parametric-roll map against the full model, the two models' ensembles
     of one sea compared (``ensembles`` {"full": path, "derivative": path} of the ensemble.nc files of
@@ -478,6 +478,7 @@ def run_derivative(config: dict, ships_dir, out_nc, validation_nc, figures: dict
     cfg = config["derivative"]
     ship = load_ship(Path(ships_dir) / f"{cfg['ship']}.yaml")
     model, dm, ds = derivative_study(ship, cfg, progress=progress)
+    cpu = ds.encoding.pop("cpu", {})
     rows = derivative_checks(model, dm, ds)
     pair = compared_ensembles(config)
     if pair:
@@ -504,4 +505,12 @@ def run_derivative(config: dict, ships_dir, out_nc, validation_nc, figures: dict
         P.map_figure(ds, figures["map"])
     write_netcdf(ds, out_nc)
     write_netcdf(checks_dataset(cfg["ship"], "derivative", rows), validation_nc)
+    if cpu_tsv:
+        # measured CPU seconds of the regular-wave map (a benchmark, not a result: differs per run)
+        from stabflow.io import atomic_path
+
+        with atomic_path(cpu_tsv) as tmp, open(tmp, "w") as fh:
+            fh.write("model\tcpu_s\tcells\n")
+            for k in ("full", "derivative"):
+                fh.write(f"{k}\t{cpu[k]:.3f}\t{cpu['cells']}\n")
     return ds

@@ -407,8 +407,17 @@ def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | Non
     if "map_speed" in d.coords:
         figs.update(_optional_figures(results, figdir, f"derivative/{ship}_{{}}.png", ("irregular_map",)))
     return _render("parametric_roll.md.j2", ship=ship, a=d.attrs, rows=rows, fit=fit, figures=figs,
-                   cpu_full=float(d["cpu_full"]), cpu_deriv=float(d["cpu_derivative"]), cells=int(d["roll_full"].size),
+                   cpu=_derivative_cpu(results, ship), cells=int(d["roll_full"].size),
                    irregular=irregular, has_map="map_speed" in d.coords)
+
+
+def _derivative_cpu(results: Path, ship: str) -> dict | None:
+    """{model: CPU seconds} of the derivative step's regular-wave map (results/benchmarks), None if absent."""
+    f = results / "benchmarks" / f"derivative_{ship}_models.tsv"
+    if not f.exists():
+        return None
+    with open(f) as fh:
+        return {r["model"]: float(r["cpu_s"]) for r in csv.DictReader(fh, delimiter="\t")}
 
 
 def _benchmark_seconds(results: Path, pattern: str) -> float | None:
