@@ -10,7 +10,7 @@ rule derivative:
         nc=f"{RESULTS}/derivative/{{ship}}.nc",
         validation=f"{RESULTS}/validation/{{ship}}_derivative.nc",
         figures=[f"{RESULTS}/derivative/{{ship}}_{f}.png" for f in DERIVATIVE_FIGURES],
-        cpu=f"{RESULTS}/benchmarks/derivative_{{ship}}_models.tsv",
+        cpu=f"{RESULTS}/derivative/{{ship}}_cpu.tsv",
     params:
         config={k: config[k] for k in ("derivative", "ensembles") if k in config},
         ships_dir=SHIPS_DIR,

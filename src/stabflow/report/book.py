@@ -91,7 +91,7 @@ def _benchmarks(results: Path) -> list[tuple[str, float]]:
     for f in sorted((results / "benchmarks").rglob("*.tsv")):
         with open(f) as fh:
             rec = list(csv.DictReader(fh, delimiter="\t"))
-        if rec:
+        if rec and "s" in rec[0]:  # Snakemake's benchmark files (wall seconds in column s)
             rows.append((str(f.relative_to(results / "benchmarks").with_suffix("")), float(rec[0]["s"])))
     return rows
 
@@ -412,8 +412,8 @@ def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | Non
 
 
 def _derivative_cpu(results: Path, ship: str) -> dict | None:
-    """{model: CPU seconds} of the derivative step's regular-wave map (results/benchmarks), None if absent."""
-    f = results / "benchmarks" / f"derivative_{ship}_models.tsv"
+    """{model: CPU seconds} of the derivative step's regular-wave map (results/derivative/<ship>_cpu.tsv), None if absent."""
+    f = results / "derivative" / f"{ship}_cpu.tsv"
     if not f.exists():
         return None
     with open(f) as fh:
