@@ -119,29 +119,28 @@ class Command:
     run: Callable
 
 
-def _broaching(a):
+def _section_and_figures(a, step: str, names) -> tuple[dict, dict | None]:
+    """The pipeline config (its ``step`` section required) and {figure stem: path in --figures}."""
     cfg = _pipeline(a)
-    if "broaching" not in cfg:
-        raise StabflowError(f"{a.config}: broaching: the section is missing: nothing to run")
-    figs = None
-    if a.figures:
-        s = cfg["broaching"]["ship"]
-        names = ([f"motions_{k}" for k in cfg["broaching"]["loadings"]] + ["strip", "manoeuvres"]
-                 + (["map"] if "map" in cfg["broaching"] else []))
-        figs = {n: str(Path(a.figures) / f"{s}_{n}.png") for n in names}
+    if step not in cfg:
+        raise StabflowError(f"{a.config}: {step}: the section is missing: nothing to run")
+    if not a.figures:
+        return cfg, None
+    s = cfg[step]["ship"]
+    return cfg, {n: str(Path(a.figures) / f"{s}_{n}.png") for n in names(cfg)}
+
+
+def _broaching(a):
+    cfg, figs = _section_and_figures(a, "broaching", lambda c: (
+        [f"motions_{k}" for k in c["broaching"]["loadings"]] + ["strip", "manoeuvres"]
+        + (["map"] if "map" in c["broaching"] else [])))
     return steps.run_broaching(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs)
 
 
 def _derivative(a):
-    cfg = _pipeline(a)
-    if "derivative" not in cfg:
-        raise StabflowError(f"{a.config}: derivative: the section is missing: nothing to run")
-    figs = None
-    if a.figures:
-        s = cfg["derivative"]["ship"]
-        figs = {n: str(Path(a.figures) / f"{s}_{n}.png") for n in steps.derivative_figure_names(cfg)}
     from stabflow.dynamics.derivative import compared_ensembles
 
+    cfg, figs = _section_and_figures(a, "derivative", steps.derivative_figure_names)
     pair = compared_ensembles(cfg)
     res = Path(cfg.get("results", "results"))
     ens = {k: str(res / "ensemble" / v / "ensemble.nc") for k, v in pair.items()} if pair else None
