@@ -3,7 +3,7 @@ from pathlib import Path
 
 from snakemake.utils import validate
 
-from stabflow.config import coerce_numbers, load_ship, schema, step_settings
+from stabflow.config import coerce_numbers, derivative_fit_settings, load_ship, schema, step_settings
 from stabflow.dynamics.derivative import compared_ensembles
 from stabflow.steps import derivative_figure_names
 
@@ -31,6 +31,12 @@ for _step in ("broaching", "derivative"):
     if _step in config and config[_step]["ship"] not in SHIPS:
         raise ValueError(f"config: {_step}: ship {config[_step]['ship']!r} is not in ships")
 for _key, _c in ENSEMBLES.items():
+    if _c.get("model", "volume") == "derivative":
+        # checked here, not first in a shard job
+        if int(_c.get("dof", 3)) != 3:
+            raise ValueError(f"config: ensembles: {_key}: model: derivative is a heave-roll-pitch model; it cannot "
+                             "run with dof: 6")
+        derivative_fit_settings(_c.get("derivative_fit", {}))
     if _c.get("compare_with"):
         _o = ENSEMBLES.get(f"{_c['ship']}_{_c['compare_with']}")
         if _o is None:
