@@ -279,15 +279,21 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
     return _render("rare_events.md.j2", conditions=conditions, one_dof=one_dof)
 
 
+def _step_result(results: Path, config: dict, step: str):
+    """(ship, dataset of results/<step>/<ship>.nc) of a one-ship step section, dataset None when the
+    config has no such section or the step has not written its file."""
+    if step not in config:
+        return None, None
+    ship = config[step]["ship"]
+    p = results / step / f"{ship}.nc"
+    return ship, (_open(p) if p.exists() else None)
+
+
 def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
     """Paper 004's scenario, the calm-water manoeuvres and the surf-riding thresholds; None if not run."""
-    if "broaching" not in config:
+    ship, d = _step_result(results, config, "broaching")
+    if d is None:
         return None
-    ship = config["broaching"]["ship"]
-    p = results / "broaching" / f"{ship}.nc"
-    if not p.exists():
-        return None
-    d = _open(p)
 
     def when(flag, t):
         return f"{float(t):.1f}" if int(flag) else "no"
@@ -359,13 +365,9 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
 
 def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | None:
     """The derivative model (paper 001): fit, transfer functions, the regular-wave map of both models."""
-    if "derivative" not in config:
+    ship, d = _step_result(results, config, "derivative")
+    if d is None:
         return None
-    ship = config["derivative"]["ship"]
-    p = results / "derivative" / f"{ship}.nc"
-    if not p.exists():
-        return None
-    d = _open(p)
     figs = _optional_figures(results, figdir, f"derivative/{ship}_{{}}.png", ("fit", "transfer_functions", "map"))
     rows = []
     for x in d["frequency_ratio"].values:
