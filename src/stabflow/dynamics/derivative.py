@@ -290,6 +290,21 @@ def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: floa
                            dataset=annotate(ds), mean_over_a2=mean2 if second_order else None)
 
 
+def run_full(model, waves, heading_deg: float, duration: float, dt: float, s0=None):
+    """States (nsteps + 1, N_STATE) and the last step done of the full volume-based model of an
+    ensemble-style ``model`` in the waves (amp, omega, phase), from ``s0`` (default: equilibrium)."""
+    from stabflow.dynamics._kernels import _simulate
+
+    nsteps = int(round(duration / dt))
+    wtab = station_wave_table(*waves, model.sec.x, heading_deg, model.speed, np.arange(2 * nsteps + 1) * 0.5 * dt,
+                              model.depth)
+    out = np.empty((nsteps + 1, K.N_STATE))
+    s = model.s0 if s0 is None else np.asarray(s0, float)
+    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, dt, 0, nsteps, s, np.radians(90.0), out,
+                     np.empty((0, 6)))
+    return out, last
+
+
 def step_derivative(dm: DerivativeModel, ctab: np.ndarray, dt: float, n0: int, n1: int, s, phi_cap: float,
                     out: np.ndarray) -> int:
     """RK4 steps n0..n1 of the derivative model on the coefficient table ``ctab`` (2 nsteps + 1, 3,
@@ -345,28 +360,22 @@ def regular_map(model, dm: DerivativeModel, ratios, heights, duration: float, dt
 
     from tqdm import tqdm
 
-    from stabflow.dynamics._kernels import _simulate
-
     w_roll = 2 * np.pi / model.roll_period
     window = 10 * model.roll_period if window is None else window
     nsteps = int(round(duration / dt))
-    t_half = np.arange(2 * nsteps + 1) * 0.5 * dt
     s0 = model.s0.copy()
     s0[K.S_ROLL] = np.radians(phi0_deg)
-    args = kernel_args(model.sec, model.tables)
     shape = (len(ratios), len(heights))
     res = {k: np.zeros(shape) for k in ("full", "deriv", "full_steady", "deriv_steady", "full_capsized",
                                         "deriv_capsized", "omega")}
     cpu = np.zeros(2)
-    out = np.empty((nsteps + 1, K.N_STATE))
     bar = tqdm(total=res["full"].size, desc="regular-wave map", disable=not progress, mininterval=10)
     for i, r in enumerate(ratios):
         w = encounter_to_wave_frequency(r * w_roll, model.speed, dm.heading_deg)
         for j, H in enumerate(heights):
             waves = (np.array([0.5 * H]), np.array([w]), np.array([0.0]))
             t0 = time.process_time()
-            wtab = station_wave_table(*waves, model.sec.x, dm.heading_deg, model.speed, t_half, model.depth)
-            last = _simulate(*args, model.p, wtab, dt, 0, nsteps, s0, np.radians(90.0), out, np.empty((0, 6)))
+            out, last = run_full(model, waves, dm.heading_deg, duration, dt, s0)
             t1 = time.process_time()
             res["full"][i, j], res["full_steady"][i, j] = steady_amplitude(np.degrees(out[:last + 1, K.S_ROLL]), dt, window)
             res["full_capsized"][i, j] = last < nsteps

@@ -238,6 +238,23 @@ def _events(rows, rec, width):
     return np.concatenate([np.column_stack([np.full(len(r), k), r]) for k, r in zip(rec, rows)]) if rows else np.zeros((0, width + 1))
 
 
+def six_dof_events(model: Model, states: np.ndarray, last: int) -> dict:
+    """Broaching and surf-riding of a 6-DOF record (states up to ``last``; the celerity of the
+    spectral peak's deep-water wave), as the broaching step's event detection."""
+    from stabflow.constants import G
+    from stabflow.dynamics import _kernels_6dof as K6
+    from stabflow.dynamics.manoeuvres import record_events
+    from stabflow.dynamics.manoeuvring import six_dof_dataset
+
+    cond = model.cond
+    status = K6.CAPSIZED if last < model.nsteps else K6.OK
+    ev = record_events(six_dof_dataset(model.six, states, model.dt, status), broach_deg=float(cond["broach_deg"]),
+                       celerity=G / model.sea.modal_frequency, surf_tolerance=float(cond["surf_tolerance"]),
+                       surf_min_s=float(cond["surf_min_s"]), heading_deg=float(cond["heading_deg"]))
+    return {"broached": ev["broach"], "broach_time": ev["broach_time"] if ev["broach"] else np.nan,
+            "surf_riding": ev["surf_riding"]}
+
+
 def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset:
     """Simulate ``records`` in parallel batches and return the shard's statistics dataset."""
     from tqdm import tqdm
@@ -250,42 +267,20 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
     recs = list(records)
     bar = tqdm(total=len(recs), desc=f"{model.ship.name} records {recs[0] if recs else 0}-", disable=not progress, mininterval=10,
                unit="rec")
-    if model.six is not None:
-        # 6-DOF: one record at a time (the wave is tabulated around the ship as it moves)
-        from stabflow.constants import G
-        from stabflow.dynamics.manoeuvres import record_events
-        from stabflow.dynamics.manoeuvring import run_six_dof, six_dof_dataset
-
+    if model.six is not None or model.derivative is not None:
+        # 6-DOF (the wave is tabulated around the ship as it moves) and the derivative model (its
+        # coefficient table dominates): one record at a time, through simulate_record
         t_mid = np.arange(model.nsteps + 1) * model.dt
         for r in recs:
+            states, last = simulate_record(model, r)
             amp, w, ph = model.sea.components(cond["seed"], r)
-            states, last, status = run_six_dof(model.six, (amp, w, ph), model.nsteps * model.dt, model.dt)
-            out = np.zeros((model.nsteps + 1, N_STATE))
-            out[:last + 1] = states[:, :N_STATE]
             # wave elevation at midships on the mean track (the spectra's reference series)
             wave_mid = station_wave_table(amp, w, ph, model.sec.x[[model.mid_station]], cond["heading_deg"], model.speed,
                                           t_mid)[:, 0, 0]
+            out = states[:, :N_STATE]
             per.append(record_statistics(model, r, out, int(last), wave_mid))
-            # broaching and surf-riding (celerity of the spectral peak's deep-water wave)
-            ev = record_events(six_dof_dataset(model.six, states, model.dt, status), broach_deg=float(cond["broach_deg"]),
-                               celerity=G / model.sea.modal_frequency, surf_tolerance=float(cond["surf_tolerance"]),
-                               surf_min_s=float(cond["surf_min_s"]), heading_deg=float(cond["heading_deg"]))
-            per[-1].update(broached=ev["broach"], broach_time=ev["broach_time"] if ev["broach"] else np.nan,
-                           surf_riding=ev["surf_riding"])
-            if r < cond["samples"]:
-                samples[r] = (out, int(last), wave_mid)
-            bar.update()
-        bar.close()
-        return shard_dataset(model, recs, per, samples, edges)
-    if model.derivative is not None:
-        # derivative model: one record at a time (its kernel is cheap; the coefficient table dominates)
-        t_mid = np.arange(model.nsteps + 1) * model.dt
-        for r in recs:
-            out, last = simulate_record(model, r)
-            amp, w, ph = model.sea.components(cond["seed"], r)
-            wave_mid = station_wave_table(amp, w, ph, model.sec.x[[model.mid_station]], cond["heading_deg"], model.speed,
-                                          t_mid)[:, 0, 0]
-            per.append(record_statistics(model, r, out, int(last), wave_mid))
+            if model.six is not None:
+                per[-1].update(six_dof_events(model, states[: last + 1], last))
             if r < cond["samples"]:
                 samples[r] = (out, int(last), wave_mid)
             bar.update()

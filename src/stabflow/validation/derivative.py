@@ -18,7 +18,7 @@ import xarray as xr
 
 from stabflow.constants import G, KNOT
 from stabflow.dynamics import _kernels as K
-from stabflow.dynamics.derivative import WAVE_TERMS, DerivativeModel, run_derivative
+from stabflow.dynamics.derivative import WAVE_TERMS, DerivativeModel, run_derivative, run_full
 from stabflow.dynamics.linear import fk_excitation
 from stabflow.validation import Check
 from stabflow.waves.synthesis import encounter_frequency
@@ -37,10 +37,7 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
                       wavelengths=(0.8, 1.2, 2.0)) -> list[Check]:
     """Rows of the module table for the ensemble-style ``model`` (:func:`stabflow.statistics.ensemble.build_model`),
     its fitted derivative model ``dm`` and the study dataset ``ds`` (fit + regular-wave map)."""
-    from stabflow.dynamics._kernels import _simulate
-    from stabflow.dynamics.tables import kernel_args
     from stabflow.validation.dynamics import KernelLoads
-    from stabflow.waves.synthesis import station_wave_table
 
     rows = []
     for i, f in enumerate(("heave", "roll", "pitch")):
@@ -74,7 +71,6 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
                               "1", "first harmonic of the FK loads on the ship held at equilibrium in a regular wave at "
                               "speed, exact section clipping (linear.fk_excitation)", "consistency"))
     # small regular waves: steady heave and pitch, both models
-    args = kernel_args(model.sec, model.tables)
     for r in wavelengths:
         lam = r * lwl
         w = np.sqrt(2 * np.pi * G / lam)
@@ -84,11 +80,8 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
         dur = max(40 * te, 400.0)
         n = int(round(dur / dt))
         waves = (np.array([0.5 * small_height]), np.array([w]), np.array([0.0]))
-        wtab = station_wave_table(*waves, model.sec.x, dm.heading_deg, model.speed, np.arange(2 * n + 1) * 0.5 * dt,
-                                  model.depth)
-        out = np.empty((n + 1, K.N_STATE))
-        _simulate(*args, model.p, wtab, dt, 0, n, model.s0, np.radians(90.0), out, np.empty((0, 6)))
-        od, _ = run_derivative(dm, waves, dur, dt)
+        out, _ = run_full(model, waves, dm.heading_deg, n * dt, dt)
+        od, _ = run_derivative(dm, waves, n * dt, dt)
         t = np.arange(n + 1) * dt
         sel = t >= t[-1] - 10 * te
         for k, f in ((K.S_Z, "heave"), (K.S_PITCH, "pitch")):
