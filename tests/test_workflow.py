@@ -85,6 +85,23 @@ def test_report_has_chapters_and_validation_table(pipeline):
             assert (html / src).exists(), (page.name, src)
 
 
+def test_criteria_results_and_chapters(pipeline):
+    """Every ship has its criteria file and chapter: IS Code rows with verdicts (the barge and the
+    Wigley hull carry their own windage), unsourced standards NOT EVALUATED with the item named."""
+    html = pipeline / "report" / "html"
+    for ship in ["barge", "wigley"]:
+        with xr.open_dataset(pipeline / "criteria" / f"{ship}.nc") as ds:
+            verdicts = dict(zip((str(n) for n in ds.criterion_name.values), (str(v) for v in ds.verdict.values)))
+            assert set(verdicts.values()) <= {"PASS", "FAIL", "NOT EVALUATED"}
+            assert verdicts["area under GZ, 0 to 30 deg"] == "PASS"
+            assert verdicts["weather criterion: area b / area a"] in ("PASS", "FAIL")
+            ne = ds.verdict.values == "NOT EVALUATED"
+            assert ne.any() and all("missing:" in str(r) for r in ds.verdict_reason.values[ne])
+            assert all(len(str(s)) > 0 for s in ds.criterion_source.values)
+        page = (html / f"criteria_{ship}.html").read_text()
+        assert "NOT EVALUATED" in page and "PASS" in page and "<table" in page
+
+
 def test_rerun_is_bit_identical(pipeline, tmp_path):
     """Same config → bit-identical NetCDF files (hull, statics)."""
     out = tmp_path / "again"

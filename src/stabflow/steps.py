@@ -232,6 +232,21 @@ def run_roll_decay(ship_yaml, hull_nc, statics_nc, out_nc, fig=None, hydro_nc=No
     return ds
 
 
+def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None) -> xr.Dataset:
+    """criteria step: IS Code and second-generation rows with every intermediate quantity → NetCDF
+    (+ GZ / weather-criterion and GM-on-the-wave figure)."""
+    from stabflow.criteria.assess import assess
+    from stabflow.io import write_netcdf
+    from stabflow.plots.criteria import criteria_figure
+
+    ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
+    ds = assess(ship, hull, st, cfg)
+    if figure:
+        criteria_figure(ds, figure, title=f"{ship.name}: IS Code weather criterion and GM on a wave λ = L")
+    write_netcdf(ds, out_nc)
+    return ds
+
+
 def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
     """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
     from stabflow.io import write_netcdf

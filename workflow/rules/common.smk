@@ -204,6 +204,12 @@ def capsize_1dof_outputs(which="nc"):
             "validation": [f"{RESULTS}/validation/box1dof_capsize.nc"]}[which]
 
 
+def criteria_data():
+    """The criteria data files and the override file, if any (edits re-run the criteria step)."""
+    files = sorted(str(p) for p in Path("resources/criteria").glob("*.yaml"))
+    return files + ([config["criteria"]["overrides"]] if config["criteria"].get("overrides") else [])
+
+
 def report_sources():
     """Hand-written report pages and styles (report/*.md, report/_config.yml, report/_static/*)."""
     return sorted(str(p) for p in Path("report").rglob("*") if p.is_file() and "_build" not in p.parts)
@@ -216,6 +222,7 @@ def all_outputs():
         + per_ship(f"{RESULTS}/waves/{{ship}}.nc")
         + per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc")
         + per_ship(f"{RESULTS}/roll_decay/{{ship}}.nc")
+        + per_ship(f"{RESULTS}/criteria/{{ship}}.nc")
         + [f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES]
         + [f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]]
         + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]

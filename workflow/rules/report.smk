@@ -8,6 +8,7 @@ rule report:
         metric=f"{RESULTS}/waves/early_stage_C.csv",
         rao=per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc"),
         roll_decay=per_ship(f"{RESULTS}/roll_decay/{{ship}}.nc"),
+        criteria=per_ship(f"{RESULTS}/criteria/{{ship}}.nc") + per_ship(f"{RESULTS}/criteria/{{ship}}_criteria.png"),
         validation=validation_files(),
         ensembles=[f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES],
         extremes=[f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]],

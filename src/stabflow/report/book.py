@@ -279,6 +279,42 @@ def rare_events_page(results: Path, config: dict, figdir: Path) -> str | None:
     return _render("rare_events.md.j2", conditions=conditions, one_dof=one_dof)
 
 
+def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
+    """Criteria chapter of one ship (None when the criteria step has not written its file)."""
+    p = results / "criteria" / f"{name}.nc"
+    if not p.exists():
+        return None
+    d = _open(p)
+    rows = [{"name": str(d.criterion_name[i].values), "level": str(d.criterion_level[i].values),
+             "value": float(d.criterion_value[i]), "unit": str(d.criterion_unit[i].values),
+             "limit": None if not np.isfinite(d.criterion_limit[i]) else float(d.criterion_limit[i]),
+             "sense": str(d.criterion_sense[i].values), "verdict": str(d.verdict[i].values),
+             "reason": str(d.verdict_reason[i].values), "source": str(d.criterion_source[i].values)}
+            for i in range(d.sizes["criterion"])]
+    counts = {v: sum(r["verdict"] == v for r in rows) for v in ("PASS", "FAIL", "NOT EVALUATED")}
+    wc = {k[3:]: float(d[k]) for k in d.data_vars if k.startswith("wc_")}
+
+    def route(name, a, b):
+        return {"name": name, "a": a, "b": b, "ratio": a / b if b else float("nan")}
+    routes, l1 = [], {"cm": float(d.midship_coefficient), "rpr": float(d.rpr)}
+    if "l1_pure_loss_gm_min" in d:
+        from stabflow.criteria.standards import Standards
+
+        std = Standards()
+        s_pl = float(std.value("sgisc.failure_modes.pure_loss_of_stability.level_1.wave_steepness_SW"))
+        s_pr = float(std.value("sgisc.failure_modes.parametric_rolling.level_1.wave_steepness_SW"))
+        routes = [route("GMmin (pure loss)", float(d.l1_pure_loss_gm_min), float(d.gm_wave_min.interp(steepness=s_pl))),
+                  route("δGM (parametric rolling)", float(d.l1_parametric_delta_gm1),
+                        float(d.delta_gm_wave.interp(steepness=s_pr)))]
+        l1.update(pl_dl=float(d.l1_pure_loss_d_L), pr_dh=float(d.l1_parametric_d_H), pr_dl=float(d.l1_parametric_d_L),
+                  sw_pl=s_pl, sw_pr=s_pr)
+    flooding = float(d.flooding_angle)
+    return _render("criteria.md.j2", name=name, rows=rows, counts=counts, overrides=d.attrs.get("standards_overridden", "none"),
+                   figure=_copy(results / "criteria" / f"{name}_criteria.png", figdir), wc=wc,
+                   block=float(d.block_coefficient), deck_edge=float(d.deck_edge_immersion),
+                   flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1)
+
+
 def _step_result(results: Path, config: dict, step: str):
     """(ship, dataset of results/<step>/<ship>.nc) of a one-ship step section, dataset None when the
     config has no such section or the step has not written its file."""
@@ -546,6 +582,7 @@ def build_report(results: str | Path, ships: list[str], config: dict, source: st
         (book / "validation.md").write_text(val)
         (book / "index.md").write_text(overview_page(results, ships, config, counts))
         chapters = {f"ship_{s}": ship_page(s, results, figdir) for s in ships}
+        chapters.update({f"criteria_{s}": criteria_page(s, results, figdir) for s in ships})
         chapters["waves"] = waves_page(results, figdir)
         chapters["rare_events"] = rare_events_page(results, config, figdir)
         chapters["broaching"] = broaching_page(results, config, figdir)

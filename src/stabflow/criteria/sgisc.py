@@ -1,0 +1,177 @@
+"""IMO second-generation intact stability criteria (MSC.1/Circ.1627): the physics of each failure
+mode's vulnerability levels, computed whatever the standards' availability, and verdicts where the
+standards are sourced (``resources/criteria/sgisc.yaml``).
+
+Pure loss of stability and parametric rolling, level 1: the metacentric height on a wave of the
+ship's length over crest positions (the waves step's quasi-static balance, paper 002 eqs A20-A24),
+and the second route the level-1 criteria use, waterplane inertias at two drafts without the wave
+(delta GM = (I_H - I_L) / 2V). Both are tabulated over wave steepness H / lambda: which steepness
+and which standard apply is the circular's, and reads as NOT EVALUATED until sourced.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from stabflow.criteria.standards import Standards
+from stabflow.criteria.verdicts import Row, against
+from stabflow.geometry import Sections
+from stabflow.stability_in_waves.wave_pass import wave_gm
+
+SG = "sgisc.failure_modes"
+CIRC = "MSC.1/Circ.1627"
+
+
+def waterplane_inertia(sec: Sections, draft: float) -> float:
+    """Transverse second moment of the even-keel waterplane at ``draft`` [m^4] (sum of (2/3) y^3 dx)."""
+    y = np.array([sec.half_breadth(i, draft) for i in range(len(sec.x))])
+    return float((2.0 / 3.0 * y**3 * sec.dx).sum())
+
+
+def gm_on_wave(sec: Sections, volume: float, lcg: float, kg: float, lwl: float, steepness, n_crest: int = 24,
+               draft: float | None = None) -> xr.Dataset:
+    """GM on a wave of length L (the waterline length) over crest positions, and the waterplane route.
+
+    Parameters
+    ----------
+    steepness : wave steepnesses H / lambda [-].
+    n_crest : crest positions over one wave length.
+    draft : midship draught d [m] for the waterplane route (drafts d +- H/2).
+
+    Returns
+    -------
+    Dataset along ``steepness`` (and ``crest_position`` for ``gm_wave``): ``gm_wave`` [m],
+    ``gm_wave_min``/``gm_wave_max`` [m], ``delta_gm_wave`` = (max - min) / 2 [m] and
+    ``delta_gm_waterplane`` = (I(d + H/2) - I(d - H/2)) / 2V [m].
+    """
+    s = np.asarray(steepness, float)
+    lam = lwl
+    k = 2 * math.pi / lam
+    xc = np.arange(n_crest) * lam / n_crest - lam / 2
+    gm = np.empty((len(s), n_crest))
+    for i, si in enumerate(s):
+        guess = (None, None)
+        for j, x in enumerate(xc):
+            gm[i, j], _, _, guess = wave_gm(sec, volume, lcg, kg, 0.5 * si * lam, k, x, guess)
+    ds = xr.Dataset(
+        {"gm_wave": (("steepness", "crest_position"), gm)},
+        coords={"steepness": s, "crest_position": xc},
+    )
+    ds["gm_wave_min"] = ds["gm_wave"].min("crest_position")
+    ds["gm_wave_max"] = ds["gm_wave"].max("crest_position")
+    ds["delta_gm_wave"] = 0.5 * (ds["gm_wave_max"] - ds["gm_wave_min"])
+    if draft is not None:
+        dwp = [(waterplane_inertia(sec, draft + 0.5 * si * lam) - waterplane_inertia(sec, max(draft - 0.5 * si * lam, 0.0)))
+               / (2 * volume) for si in s]
+        ds["delta_gm_waterplane"] = ("steepness", np.array(dwp))
+    return ds
+
+
+def simplified_level1(sec: Sections, volume: float, kg: float, draft: float, depth: float, lwl: float, sw: float,
+                      low_fraction: float) -> dict:
+    """The waterplane-inertia route of level 1 at wave steepness ``sw`` (drafts as the sourced rule,
+    ``sgisc.yaml``: d_H = d + min(D - d, L SW/2), d_L = d - min(d - f d, L SW/2), f = ``low_fraction``).
+
+    Returns d_H, d_L [m], I_H, I_L [m^4], KB(d_L) [m], GMmin = KB(d_L) + I_L / V - KG [m] and
+    delta GM1 = (I_H - I_L) / 2V [m] (V the loading's volume).
+    """
+    from stabflow.hydrostatics.statics import _volume_at
+
+    half = 0.5 * lwl * sw
+    dh = draft + min(depth - draft, half)
+    dl = draft - min(draft - low_fraction * draft, half)
+    ih, il = waterplane_inertia(sec, dh), waterplane_inertia(sec, dl)
+    kb_l = _volume_at(sec, -dl)[2]
+    return {"d_H": dh, "d_L": dl, "I_H": ih, "I_L": il, "KB_L": kb_l, "gm_min": kb_l + il / volume - kg,
+            "delta_gm1": (ih - il) / (2 * volume)}
+
+
+def rpr(std: Standards, cm: float, keel_area: float, lwl: float, breadth: float, bilge: str) -> tuple[float, str]:
+    """Parametric-rolling level-1 standard R_PR [-] from the sourced formula (coefficients in
+    ``sgisc.yaml``, RPR_*): f = min(100 Ak / (L B), cap); 0.17 + c f with c by the midship
+    coefficient Cm. Returns (R_PR, how it was chosen)."""
+    pr = f"{SG}.parametric_rolling.level_1"
+    if bilge == "sharp":
+        return float(std.value(f"{pr}.RPR_sharp_bilge")), "sharp bilge"
+    f = min(100 * keel_area / (lwl * breadth), float(std.value(f"{pr}.RPR_bilge_keel_term_max")))
+    if cm > 0.96:
+        c = float(std.value(f"{pr}.RPR_coef_Cm_above_0_96"))
+    elif cm >= 0.94:
+        c = float(std.value(f"{pr}.RPR_coef_Cm_0_94_to_0_96_slope")) * cm + float(std.value(f"{pr}.RPR_coef_Cm_0_94_to_0_96_intercept"))
+    else:
+        c = float(std.value(f"{pr}.RPR_coef_Cm_below_0_94"))
+    return float(std.value(f"{pr}.RPR_base")) + c * f, f"Cm = {cm:.3f}, 100 Ak/(L B) = {100 * keel_area / (lwl * breadth):.3f}"
+
+
+def level1_rows(gw: xr.Dataset, simple: dict, gm0: float, lwl: float, fn: float | None, std: Standards,
+                r_pr: tuple[float, str], reserve: float) -> list[Row]:
+    """Level-1 rows of pure loss, parametric rolling and surf-riding, each route its own row
+    (NOT EVALUATED where the circular's numbers are not sourced; the curves are in the results
+    either way). ``simple`` maps "pure_loss"/"parametric" to :func:`simplified_level1` results."""
+    rows = []
+    pl, pr = f"{SG}.pure_loss_of_stability.level_1", f"{SG}.parametric_rolling.level_1"
+    fn_app = std.get_or_missing(f"{pl}.froude_number_applicability", f"{CIRC}, pure loss application")
+    app = (f"applies when Fn > {fn_app.value:g} ({fn_app.source}); " + (f"Fn = {fn:.3f}" if fn is not None else
+           "service speed not given") if fn_app.available else "")
+    sw = std.get_or_missing(f"{pl}.wave_steepness_SW", f"{CIRC}, pure loss level 1")
+    r = std.get_or_missing(f"{pl}.RPL_standard_GM_min", f"{CIRC}, pure loss level 1")
+    miss = [] if sw.available else [f"{sw.key} ({sw.source})"]
+    lvl = "SGISC pure loss, level 1"
+    v = simple["pure_loss"]["gm_min"] if sw.available else math.nan
+    rows.append(against("pure loss: GMmin by waterplane inertia at d_L", lvl, v, "m", r, ">=", missing=miss,
+                        note=(f"d_L = {simple['pure_loss']['d_L']:.3f} m, SW = {sw.value} ({sw.cite()}); {app}"
+                              if sw.available else app)))
+    v = float(gw["gm_wave_min"].interp(steepness=float(sw.value))) if sw.available else math.nan
+    rows.append(against("pure loss: GMmin on the wave lambda = L, H = SW L (stabflow's direct route)", lvl, v, "m", r,
+                        ">=", missing=miss, note="quasi-static balance on the wave over crest positions (free sinkage "
+                        "and trim); the circular's wording for a direct route was not read"))
+    rr = std.get_or_missing(f"{pl}.freeboard_volume_ratio_min", f"{CIRC}, level-1 simplified method")
+    rows.append(against("level-1 simplified method: (V_D - V) / (A_W (D - d))", lvl + " and parametric rolling, level 1",
+                        reserve, "-", rr, ">=", note="its role in the circular (condition of the simplified method "
+                        "or a pass condition) was not verified (sgisc.yaml note)"))
+    sw = std.get_or_missing(f"{pr}.wave_steepness_SW", f"{CIRC}, parametric rolling level 1")
+    miss = [] if sw.available else [f"{sw.key} ({sw.source})"]
+    lvl = "SGISC parametric rolling, level 1"
+    limit = std.get(f"{pr}.RPR_base")
+    for name, v in (("parametric rolling: delta GM1 / GM by waterplane inertias", simple["parametric"]["delta_gm1"]),
+                    ("parametric rolling: delta GM / GM on the wave lambda = L (stabflow's direct route)",
+                     float(gw["delta_gm_wave"].interp(steepness=float(sw.value))) if sw.available else math.nan)):
+        row = against(name, lvl, v / gm0 if sw.available else math.nan, "-", limit, "<=", missing=miss,
+                      note=f"R_PR = {r_pr[0]:.3f} ({r_pr[1]})" + (f"; SW = {sw.value}" if sw.available else ""))
+        row.limit = r_pr[0]
+        row.source = "; ".join(std.get(f"{pr}.{k}").cite() for k in ("RPR_base", "wave_steepness_SW"))
+        rows.append(row)
+    lim_l = std.get_or_missing(f"{SG}.surf_riding_broaching.level_1.length_limit_m", f"{CIRC}, surf-riding level 1")
+    lim_f = std.get_or_missing(f"{SG}.surf_riding_broaching.level_1.froude_number_limit", f"{CIRC}, surf-riding level 1")
+    rows.append(against("surf-riding/broaching: ship length", "SGISC surf-riding, level 1", lwl, "m", lim_l, ">=",
+                        note="not vulnerable if L is above the limit (or Fn below its limit)"))
+    rows.append(against("surf-riding/broaching: Froude number at the service speed", "SGISC surf-riding, level 1",
+                        fn if fn is not None else math.nan, "-", lim_f, "<=",
+                        missing=[] if fn is not None else ["service speed (ship config criteria.service_speed_kn)"]))
+    return rows
+
+
+#: failure-mode levels whose physics is not in stabflow yet: rows stay, NOT EVALUATED, naming both
+PENDING = (
+    ("pure loss of stability: max(CR1, CR2)", "SGISC pure loss, level 2", f"{SG}.pure_loss_of_stability.level_2.RPL0"),
+    ("parametric rolling: C1 / C2", "SGISC parametric rolling, level 2", f"{SG}.parametric_rolling.level_2.RPR0"),
+    ("surf-riding/broaching: C", "SGISC surf-riding, level 2", f"{SG}.surf_riding_broaching.level_2.R_SR"),
+    ("dead ship condition", "SGISC dead ship, level 1", f"{SG}.dead_ship.level_1.standard"),
+    ("dead ship condition: long-term failure index C", "SGISC dead ship, level 2", f"{SG}.dead_ship.level_2.RDS0"),
+    ("excessive acceleration", "SGISC excessive acceleration, level 1", f"{SG}.excessive_acceleration.level_1.REA1"),
+    ("excessive acceleration: long-term index C", "SGISC excessive acceleration, level 2",
+     f"{SG}.excessive_acceleration.level_2.REA2"),
+)
+
+
+def pending_rows(std: Standards) -> list[Row]:
+    """Rows of the levels whose computation stabflow does not have yet (issue 21 in progress)."""
+    out = []
+    for name, level, key in PENDING:
+        s = std.get_or_missing(key, f"{CIRC}, {level}")
+        out.append(against(name, level, math.nan, "-", s, "<=",
+                           missing=["stabflow's computation of this level (not implemented yet)"]))
+    return out

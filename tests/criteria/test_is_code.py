@@ -1,0 +1,130 @@
+"""IS Code criteria on the box barge against exact integration of the exact box GZ (shapely polygon
+clipping, independent of stabflow's sections), and the weather criterion's quantities by hand."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from stabflow.config import load_ship
+from stabflow.criteria import is_code
+from stabflow.criteria.assess import assess, keel_area
+from stabflow.criteria.standards import Standards
+from stabflow.geometry import build_hull
+from stabflow.hydrostatics.statics import compute_statics
+from stabflow.validation.references import exact_box_gz
+
+L, B, D, T, KG = 100.0, 20.0, 12.0, 6.0, 7.0
+CFG = {"steepness": [0.02, 0.04], "crest_positions": 8}
+
+
+@pytest.fixture(scope="module")
+def barge(tmp_path_factory):
+    from tests.conftest import SHIPS
+    import yaml
+
+    data = yaml.safe_load((SHIPS / "barge.yaml").read_text())
+    data["criteria"] = {"windage": "hull", "bilge": "sharp", "service_speed_kn": 10.0}
+    p = tmp_path_factory.mktemp("barge") / "barge.yaml"
+    p.write_text(yaml.safe_dump(data))
+    ship = load_ship(p)
+    hull = build_hull(ship)
+    st = compute_statics(ship, hull)
+    return ship, hull, st, assess(ship, hull, st, CFG)
+
+
+def exact_gz(phi_deg):
+    """Exact box GZ, odd in heel."""
+    s = np.sign(phi_deg) if phi_deg != 0 else 1.0
+    return s * float(exact_box_gz(L, B, D, L * B * T, KG, [abs(phi_deg)])[0])
+
+
+def exact_area(a, b):
+    return quad(exact_gz, a, b, points=[math.degrees(math.atan(2 * (D - T) / B))], epsabs=1e-10, limit=200)[0] * math.pi / 180
+
+
+def row(ds, name):
+    i = [j for j in range(ds.sizes["criterion"]) if str(ds.criterion_name[j].values).startswith(name)]
+    assert len(i) == 1, name
+    return ds.isel(criterion=i[0])
+
+
+def test_general_criteria_areas_exact(barge):
+    """Areas under GZ to 1e-4 relative of the exact integral; GZ beyond 30 deg and GM0 exact."""
+    ds = barge[3]
+    for name, a, b in (("area under GZ, 0 to 30", 0, 30), ("area under GZ, 0 to 40", 0, 40), ("area under GZ, 30 to 40", 30, 40)):
+        r = row(ds, name)
+        assert float(r.criterion_value) == pytest.approx(exact_area(a, b), rel=1e-4), name
+        assert str(r.verdict.values) == "PASS"
+    gmax30 = max(exact_gz(p) for p in np.arange(30, 90.01, 0.25))
+    assert float(row(ds, "largest GZ at heel >= 30").criterion_value) == pytest.approx(gmax30, rel=1e-6)
+    # GM0 of a box: KB + B^2 / (12 T) - KG
+    assert float(row(ds, "initial metacentric height").criterion_value) == pytest.approx(T / 2 + B**2 / (12 * T) - KG, rel=1e-9)
+    # deck edge immerses at atan(freeboard / half-breadth) (a box stays level)
+    assert float(ds.deck_edge_immersion) == pytest.approx(math.degrees(math.atan((D - T) / (B / 2))), abs=1e-6)
+
+
+def test_weather_criterion_by_hand(barge):
+    """Levers, roll-back factors, intercepts and areas a, b recomputed from the exact GZ and the
+    Code's formulas with the standards read from the data file."""
+    ds = barge[3]
+    std = Standards()
+    wc = "is_code_2008.weather_criterion"
+    P = std.value(f"{wc}.wind_pressure_P")
+    disp = 1025.0 * L * B * T / 1000.0
+    # hull windage of a box: the freeboard strip, centroid at (T + D) / 2; underwater centroid T / 2
+    lw1 = P * L * (D - T) * ((T + D) / 2 - T / 2) / (1000 * std.value(f"{wc}.steady_wind_lever_lw1.constants.g") * disp)
+    assert float(ds.wc_lw1) == pytest.approx(lw1, rel=1e-9)
+    lw2 = 1.5 * lw1
+    # X1 at B/d = 3.33 between the 3.3 and 3.4 rows (0.84, 0.82); CB = 1 -> X2 end row 1.00; sharp bilge k 0.7
+    assert float(ds.wc_X1) == pytest.approx(0.84 + (B / T - 3.3) / 0.1 * (0.82 - 0.84), rel=1e-12)
+    assert float(ds.wc_X2) == 1.0 and float(ds.wc_k) == 0.7
+    r = 0.73 + 0.6 * (KG - T) / T
+    C = 0.373 + 0.023 * B / T - 0.043 * L / 100
+    Tr = 2 * C * B / math.sqrt(T / 2 + B**2 / (12 * T) - KG)
+    s = float(np.interp(Tr, [12, 14], [0.065, 0.053]))
+    phi1 = 109 * 0.7 * float(ds.wc_X1) * 1.0 * math.sqrt(r * s)
+    assert float(ds.wc_T) == pytest.approx(Tr, rel=1e-9)
+    assert float(ds.wc_phi1) == pytest.approx(phi1, rel=1e-9)
+    phi0 = brentq(lambda p: exact_gz(p) - lw1, 0, 10)
+    phil2 = brentq(lambda p: exact_gz(p) - lw2, 0, 10)
+    phic = brentq(lambda p: exact_gz(p) - lw2, 60, 89)
+    phi2 = min(50.0, phic)
+    a = lw2 * math.radians(phil2 - (phi0 - phi1)) - exact_area(phi0 - phi1, phil2)
+    b = exact_area(phil2, phi2) - lw2 * math.radians(phi2 - phil2)
+    assert float(ds.wc_phi0) == pytest.approx(phi0, abs=1e-4)
+    assert float(ds.wc_area_a) == pytest.approx(a, rel=1e-3)
+    assert float(ds.wc_area_b) == pytest.approx(b, rel=1e-4)
+    rr = row(ds, "weather criterion: area b / area a")
+    assert float(rr.criterion_value) == pytest.approx(b / a, rel=1e-3)
+    assert str(rr.verdict.values) == "PASS"
+
+
+def test_weather_criterion_not_evaluated_without_windage():
+    """No windage in the ship config: both rows NOT EVALUATED naming it; the roll-back angle is still there."""
+    std = Standards()
+    heel = np.arange(0, 90.01, 1.0)
+    stab = is_code.Stability(heel, np.sin(np.radians(heel)) * 1.0, 1.0, 5.0, 4.0, 10.0, 60.0, 0.6, 1000.0, 30.0)
+    rows, q = is_code.weather_criterion(stab, std, None)
+    assert [r.verdict for r in rows] == ["NOT EVALUATED"] * 2
+    assert all("windage" in r.reason for r in rows)
+    assert math.isfinite(q["wc_phi1"]) and q["wc_phi1"] > 0
+
+
+def test_failing_loading_fails():
+    """A ship with too little stability fails the general criteria (they can fail)."""
+    std = Standards()
+    heel = np.arange(0, 90.01, 0.5)
+    gz = 0.1 * np.sin(np.radians(2 * heel)).clip(0)  # GM0 0.2 m, GZmax 0.1 m at 45 deg
+    stab = is_code.Stability(heel, gz, 0.2, 5.0, 4.0, 10.0, 60.0, 0.6, 1000.0, 30.0)
+    verdicts = {r.criterion.split(",")[0] + r.criterion[-12:]: r.verdict for r in is_code.general_criteria(stab, std)}
+    assert list(verdicts.values()).count("FAIL") == 4  # the three areas and GZ >= 0.2 m
+    assert "PASS" in verdicts.values()  # angle of GZmax 45 deg and GM0 0.2 m
+
+
+def test_keel_area():
+    class S:
+        data = {"dynamics": {"bilge_keels": {"span": 0.5, "x_start": -10.0, "x_end": 10.0}}}
+    assert keel_area(S) == pytest.approx(0.5 * 20 * 2)

@@ -1,0 +1,104 @@
+"""Second-generation level-1 physics on the box barge in closed form."""
+
+import math
+
+import numpy as np
+import pytest
+
+from stabflow.config import load_ship
+from stabflow.criteria import sgisc
+from stabflow.criteria.standards import Standards
+from stabflow.geometry import Sections, build_hull
+from stabflow.hydrostatics.statics import compute_statics
+from tests.conftest import SHIPS
+
+L, B, T, KG = 100.0, 20.0, 6.0, 7.0
+
+
+@pytest.fixture(scope="module")
+def box():
+    ship = load_ship(SHIPS / "barge.yaml")
+    hull = build_hull(ship)
+    st = compute_statics(ship, hull)
+    gw = sgisc.gm_on_wave(Sections(hull), float(st["volume"]), float(st["lcg"]), KG, float(st["lwl"]),
+                          [0.01, 0.03, 0.05], n_crest=8, draft=T)
+    return st, gw
+
+
+def test_gm_on_wave_box_closed_form(box):
+    """Wall-sided box on a wave of its own length (amplitude a, no sinkage over a whole wave):
+    crest or trough amidships, KB = T/2 + a^2/(4T) and BM unchanged, so GM = GM0 + a^2/(4T);
+    crest at a quarter length, the trim tan(theta) = -12 a / (k L^2) that keeps LCB gives
+    GM = GM0 + a^2/T (1/4 - 6/(kL)^2) to first order in the trim."""
+    st, gw = box
+    gm0 = float(st["gm"])
+    kL = 2 * math.pi
+    for s in gw.steepness.values:
+        a = 0.5 * s * L
+        g = gw["gm_wave"].sel(steepness=s)
+        assert float(g.sel(crest_position=0.0)) == pytest.approx(gm0 + a**2 / (4 * T), abs=1e-9)
+        assert float(g.sel(crest_position=-L / 2)) == pytest.approx(gm0 + a**2 / (4 * T), abs=1e-9)
+        quarter = float(g.sel(crest_position=-L / 4))
+        assert quarter == pytest.approx(gm0 + a**2 / T * (0.25 - 6 / kL**2), rel=2e-3)
+        assert float(gw["gm_wave_min"].sel(steepness=s)) == pytest.approx(quarter, abs=1e-12)
+
+
+def test_waterplane_route_box_is_zero(box):
+    """Wall-sided: the waterplane inertia does not change with draft, delta GM1 = 0 exactly."""
+    _, gw = box
+    assert np.abs(gw["delta_gm_waterplane"].values).max() < 1e-12
+    assert sgisc.waterplane_inertia(Sections(build_hull(load_ship(SHIPS / "barge.yaml"))), T) == pytest.approx(B**3 * L / 12, rel=1e-12)
+
+
+def _rows(gw, std, fn=0.2):
+    simple = {m: sgisc.simplified_level1(Sections(build_hull(load_ship(SHIPS / "barge.yaml"))), L * B * T, KG, T, 12.0, L,
+                                         sw, 0.25) for m, sw in (("pure_loss", 0.0334), ("parametric", 0.0167))}
+    return {r.criterion: r for r in sgisc.level1_rows(gw, simple, 1.5556, L, fn, std, (0.17, "test"), 1.0)}
+
+
+def test_simplified_level1_box_closed_form():
+    """Box: d_L = d - min(0.75 d, L SW/2), d_H = d + min(D - d, L SW/2); GMmin = d_L/2 + (B^3 L/12)/V - KG;
+    delta GM1 = 0 (wall-sided)."""
+    sec = Sections(build_hull(load_ship(SHIPS / "barge.yaml")))
+    for sw in (0.0167, 0.0334, 0.2):
+        r = sgisc.simplified_level1(sec, L * B * T, KG, T, 12.0, L, sw, 0.25)
+        dl = T - min(0.75 * T, L * sw / 2)
+        assert r["d_L"] == pytest.approx(dl) and r["d_H"] == pytest.approx(T + min(12.0 - T, L * sw / 2))
+        assert r["gm_min"] == pytest.approx(dl / 2 + B**3 * L / 12 / (L * B * T) - KG, rel=1e-9)
+        assert abs(r["delta_gm1"]) < 1e-12
+
+
+def test_rpr_formula():
+    """R_PR = 0.17 + c min(100 Ak/(L B), 4), c by Cm (sgisc.yaml): continuous at Cm 0.94 and 0.96."""
+    std = Standards()
+    ak = 0.01 * L * B  # 100 Ak / (L B) = 1
+    assert sgisc.rpr(std, 0.90, 0.0, L, B, "round")[0] == pytest.approx(0.17)
+    assert sgisc.rpr(std, 0.90, ak, L, B, "round")[0] == pytest.approx(0.17 + 0.2125)
+    assert sgisc.rpr(std, 0.94, ak, L, B, "round")[0] == pytest.approx(0.17 + 0.2125)
+    assert sgisc.rpr(std, 0.96, ak, L, B, "round")[0] == pytest.approx(0.17 + 0.425)
+    assert sgisc.rpr(std, 0.99, 10 * ak, L, B, "round")[0] == pytest.approx(0.17 + 0.425 * 4)
+
+
+def test_level1_rows(box):
+    """Sourced level-1 standards give verdicts; the unsourced surf-riding limits stay NOT EVALUATED."""
+    _, gw = box
+    rows = _rows(gw, Standards())
+    assert rows["pure loss: GMmin by waterplane inertia at d_L"].verdict == "PASS"
+    assert rows["parametric rolling: delta GM1 / GM by waterplane inertias"].verdict == "PASS"
+    for k in ("surf-riding/broaching: ship length", "surf-riding/broaching: Froude number at the service speed"):
+        assert rows[k].verdict == "NOT EVALUATED" and "missing: sgisc." in rows[k].reason
+
+
+def test_override_makes_a_verdict(box, tmp_path):
+    """A user who holds the circular supplies the values: the rows turn into verdicts, sourced."""
+    _, gw = box
+    p = tmp_path / "over.yaml"
+    p.write_text(
+        "criteria_overrides:\n"
+        "  - {key: sgisc.failure_modes.surf_riding_broaching.level_1.length_limit_m, value: 50.0, source: 'test document 1.2'}\n"
+        "  - {key: sgisc.failure_modes.surf_riding_broaching.level_1.froude_number_limit, value: 0.1, source: 'test document 1.3'}\n")
+    rows = _rows(gw, Standards(p))
+    assert rows["surf-riding/broaching: ship length"].verdict == "PASS"
+    assert rows["surf-riding/broaching: Froude number at the service speed"].verdict == "FAIL"
+    assert "test document 1.2" in rows["surf-riding/broaching: ship length"].source
+    assert "override file" in rows["surf-riding/broaching: ship length"].source

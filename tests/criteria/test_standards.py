@@ -1,0 +1,53 @@
+"""The criteria data: every value sourced, null values explained, overrides validated."""
+
+import pytest
+
+from stabflow import StabflowError
+from stabflow.criteria.standards import Standards
+
+
+def test_every_entry_has_provenance():
+    std = Standards()
+    assert len(std.entries) > 30
+    for key, e in std.entries.items():
+        assert e["source"], key
+        assert e["value"] is not None or e["missing"], key
+        assert e["value"] is None or e.get("read_at"), key
+
+
+def test_missing_source_is_an_error(tmp_path):
+    import shutil
+
+    from stabflow.criteria.standards import DATA_DIR, FILES
+
+    for f in FILES:
+        shutil.copy(DATA_DIR / f"{f}.yaml", tmp_path / f"{f}.yaml")
+    text = (tmp_path / "is_code_2008.yaml").read_text().replace(
+        'source: "IMO Res. MSC.267(85) 2008 IS Code, Part A, 2.2.1 (area under GZ curve up to 30 deg)"', "")
+    (tmp_path / "is_code_2008.yaml").write_text(text)
+    with pytest.raises(StabflowError, match="area_0_to_30.source"):
+        Standards(data_dir=tmp_path)
+
+
+@pytest.mark.parametrize("item, match", [
+    ("{key: no.such.entry, value: 1.0, source: x}", "criteria_overrides.0.key"),
+    ("{key: is_code_2008.general_criteria.gm0_min, value: abc, source: x}", "criteria_overrides.0.value"),
+    ("{key: is_code_2008.general_criteria.gm0_min, value: 0.2}", "criteria_overrides.0"),
+    ("{key: is_code_2008.general_criteria.gm0_min, value: 0.2, source: ' '}", "criteria_overrides.0.source"),
+    ("{key: is_code_2008.general_criteria.gm0_min, value: 0.2, source: x, unit: ft}", "criteria_overrides.0.unit"),
+])
+def test_bad_override_names_file_and_field(tmp_path, item, match):
+    p = tmp_path / "o.yaml"
+    p.write_text(f"criteria_overrides:\n  - {item}\n")
+    with pytest.raises(StabflowError, match=match) as e:
+        Standards(p)
+    assert str(p) in str(e.value)
+
+
+def test_override_replaces_value_and_records_source(tmp_path):
+    p = tmp_path / "o.yaml"
+    p.write_text("criteria_overrides:\n  - {key: is_code_2008.general_criteria.gm0_min, value: 0.35, source: 'owner rule 4.1'}\n")
+    std = Standards(p)
+    s = std.get("is_code_2008.general_criteria.gm0_min")
+    assert s.value == 0.35 and s.source == "owner rule 4.1" and str(p) in s.read_at
+    assert std.overrides_summary() and "owner rule 4.1" in std.overrides_summary()[0]
