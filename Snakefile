@@ -1,5 +1,5 @@
 # stabflow: ship dynamic stability in irregular seas.
-# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> extremes / splittime (+ the 1-DOF capsize case, the 6-DOF broaching scenario, the derivative model) -> criteria -> validation -> report.
+# The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> extremes / splittime (+ the 1-DOF capsize case, the 6-DOF broaching scenario, the derivative model) -> criteria / dsa -> validation -> report.
 
 
 configfile: "config/config.yaml"
@@ -18,6 +18,7 @@ include: "workflow/rules/capsize_1dof.smk"
 include: "workflow/rules/broaching.smk"
 include: "workflow/rules/derivative.smk"
 include: "workflow/rules/criteria.smk"
+include: "workflow/rules/dsa.smk"
 include: "workflow/rules/validate.smk"
 include: "workflow/rules/report.smk"
 

@@ -100,6 +100,15 @@ def test_criteria_results_and_chapters(pipeline):
             assert all(len(str(s)) > 0 for s in ds.criterion_source.values)
         page = (html / f"criteria_{ship}.html").read_text()
         assert "NOT EVALUATED" in page and "PASS" in page and "<table" in page
+        # the (reduced) direct stability assessment: a long-term rate with its interval, never a bare 0
+        with xr.open_dataset(pipeline / "criteria" / f"{ship}_dsa.nc") as d:
+            assert float(d.rate_lo) <= float(d.rate) <= float(d.rate_hi) and float(d.rate_hi) > 0
+            assert set(d.method.values.astype(str)) <= {"screened", "counted", "extrapolated"}
+        assert "Direct stability assessment" in page
+    with xr.open_dataset(pipeline / "validation" / "dsa_linear_criteria.nc") as ds:
+        assert list(ds.status.values)[0] == "PASS"
+    with xr.open_dataset(pipeline / "validation" / "barge_criteria.nc") as ds:
+        assert set(ds.status.values) == {"PASS"} and ds.sizes["check"] >= 8
 
 
 def test_rerun_is_bit_identical(pipeline, tmp_path):

@@ -247,6 +247,47 @@ def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None)
     return ds
 
 
+def run_dsa(ship_yaml, criteria_nc, cfg: dict, out_nc, figures: dict | None = None, hydro_nc=None,
+            progress: bool = True) -> xr.Dataset:
+    """dsa step: direct stability assessment of one ship over the scatter table → NetCDF (+ the
+    contribution map and the operational polar)."""
+    from stabflow.criteria.dsa_run import assess_dsa
+    from stabflow.io import write_netcdf
+    from stabflow.plots.criteria import dsa_figures
+
+    ship = load_ship(ship_yaml)
+    crit = _open_optional(criteria_nc)
+    ds = assess_dsa(ship, crit, cfg, _open_optional(hydro_nc), progress=progress)
+    if figures:
+        dsa_figures(ds, figures, ship.name)
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_criteria(ship_yaml, criteria_nc, out_nc) -> xr.Dataset:
+    """validation of the criteria step (closed forms of the box barge) → NetCDF rows."""
+    from stabflow.io import write_netcdf
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.criteria import criteria_checks
+
+    ship = load_ship(ship_yaml)
+    ds = checks_dataset(ship.name, "criteria", criteria_checks(ship, _open_optional(criteria_nc)))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
+def run_validate_dsa(out_nc) -> xr.Dataset:
+    """validation of the DSA aggregation against Rice's exact rate (linear 1-DOF roll) → NetCDF rows."""
+    from stabflow.criteria.dsa import dsa_verification
+    from stabflow.io import write_netcdf
+    from stabflow.validation import checks_dataset
+    from stabflow.validation.criteria import dsa_checks
+
+    ds = checks_dataset("dsa_linear", "criteria", dsa_checks(dsa_verification()))
+    write_netcdf(ds, out_nc)
+    return ds
+
+
 def run_validate_statics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
     """validation of the statics step → NetCDF rows (check, value, tolerance, PASS/FAIL)."""
     from stabflow.io import write_netcdf

@@ -48,6 +48,9 @@ for _key, _c in ENSEMBLES.items():
         if _diff:
             raise ValueError(f"config: ensembles: {_key}: compare_with: {_c['compare_with']!r} differs in "
                              f"{', '.join(_diff)}; the two conditions must be the same sea and ship")
+for _s in config["dsa"].get("ships") or []:
+    if _s not in SHIPS:
+        raise ValueError(f"config: dsa: ships: {_s!r} is not in ships")
 for _key, _c in ENSEMBLES.items():
     if _c["ship"] not in SHIPS:
         raise ValueError(f"config: ensembles: {_key}: ship {_c['ship']!r} is not in ships")
@@ -145,6 +148,8 @@ def validation_files():
         + capsize_1dof_outputs("validation")
         + broaching_outputs("validation")
         + derivative_outputs("validation")
+        + per_ship(f"{RESULTS}/validation/{{ship}}_criteria.nc")
+        + [f"{RESULTS}/validation/dsa_linear_criteria.nc"]
     )
 
 
@@ -210,6 +215,17 @@ def criteria_data():
     return files + ([config["criteria"]["overrides"]] if config["criteria"].get("overrides") else [])
 
 
+def dsa_ships():
+    """Ships of the direct stability assessment (dsa.ships, or every ship)."""
+    return config["dsa"]["ships"] if config["dsa"].get("ships") is not None else list(SHIPS)
+
+
+def dsa_hydro(wildcards):
+    """Capytaine coefficients for a ship whose DSA dynamics use them."""
+    dyn = dict(SHIPS[wildcards.ship].data["dynamics"], **config["dsa"].get("dynamics", {}))
+    return [f"{RESULTS}/hydro/{wildcards.ship}_{RAO_CONDITIONS[0]}.nc"] if dyn.get("hydro") == "capytaine" else []
+
+
 def report_sources():
     """Hand-written report pages and styles (report/*.md, report/_config.yml, report/_static/*)."""
     return sorted(str(p) for p in Path("report").rglob("*") if p.is_file() and "_build" not in p.parts)
@@ -223,6 +239,7 @@ def all_outputs():
         + per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc")
         + per_ship(f"{RESULTS}/roll_decay/{{ship}}.nc")
         + per_ship(f"{RESULTS}/criteria/{{ship}}.nc")
+        + [f"{RESULTS}/criteria/{s}_dsa.nc" for s in dsa_ships()]
         + [f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES]
         + [f"{RESULTS}/extremes/{k}.nc" for k in config["extremes"]["conditions"]]
         + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]

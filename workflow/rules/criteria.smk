@@ -18,3 +18,34 @@ rule criteria:
         "../envs/stabflow.yaml"
     script:
         "../scripts/criteria.py"
+
+
+rule validate_criteria:
+    """Criteria of the box barge against closed forms and exact integration (other hulls: SKIPPED with the reason)."""
+    input:
+        ship=ship_yaml,
+        criteria=f"{RESULTS}/criteria/{{ship}}.nc",
+    output:
+        nc=f"{RESULTS}/validation/{{ship}}_criteria.nc",
+    log:
+        f"{RESULTS}/logs/validation/{{ship}}_criteria.log",
+    conda:
+        "../envs/stabflow.yaml"
+    script:
+        "../scripts/validate_criteria.py"
+
+
+rule validate_dsa:
+    """The DSA aggregation against an exact answer: linear 1-DOF roll, Rice's formula over the scatter table."""
+    input:
+        data=criteria_data(),
+    output:
+        nc=f"{RESULTS}/validation/dsa_linear_criteria.nc",
+    log:
+        f"{RESULTS}/logs/validation/dsa_linear_criteria.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/validate_dsa/dsa_linear.tsv"
+    conda:
+        "../envs/stabflow.yaml"
+    script:
+        "../scripts/validate_dsa.py"

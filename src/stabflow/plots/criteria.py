@@ -52,3 +52,54 @@ def criteria_figure(ds: xr.Dataset, path, title: str = ""):
     fig.tight_layout()
     atomic_savefig(fig, path, dpi=120)
     plt.close(fig)
+
+
+def dsa_figures(ds: xr.Dataset, paths: dict, name: str):
+    """``paths['map']``: each (Hs, Tz) cell's contribution to the long-term rate (summed over headings
+    and speeds; x marks cells whose every heading and speed was screened); ``paths['polar']``: the
+    failure rate over heading x speed in the three sea states contributing most."""
+    import pandas as pd
+    from matplotlib.colors import LogNorm
+
+    df = pd.DataFrame({"hs": ds.hs.values, "tz": ds.tz.values, "heading": ds.heading.values,
+                       "speed": ds.speed_kn.values, "c": ds.contribution.values,
+                       "rate": ds.cell_rate.values * 3600.0, "screened": ds.method.values == "screened"})
+    df["zero"] = (ds.method.values == "counted") & (ds.failures.values == 0)
+    g = df.groupby(["hs", "tz"]).agg(c=("c", "sum"), screened=("screened", "all"), zero=("zero", "any")).reset_index()
+    hs, tz = np.sort(g.hs.unique()), np.sort(g.tz.unique())
+    C = np.full((len(hs), len(tz)), np.nan)
+    for r in g.itertuples():
+        C[np.searchsorted(hs, r.hs), np.searchsorted(tz, r.tz)] = r.c
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    pos = C[np.isfinite(C) & (C > 0)]
+    norm = LogNorm(vmin=max(pos.min(), pos.max() * 1e-8), vmax=pos.max()) if pos.size else None
+    m = ax.pcolormesh(tz, hs, np.where(C > 0, C, np.nan), norm=norm, cmap="viridis", shading="nearest")
+    if pos.size:
+        fig.colorbar(m, ax=ax, label="contribution to the long-term rate [1/year]")
+    s = g[g.screened]
+    ax.plot(s.tz, s.hs, "x", color="0.4", ms=4, label="screened (bound only)")
+    z = g[g.zero & (g.c <= 0)]
+    ax.plot(z.tz, z.hs, "o", mfc="none", color="C3", ms=5, label="simulated, no failure counted (in the interval's upper bound)")
+    ax.set_xlabel("zero-crossing period Tz [s]")
+    ax.set_ylabel("significant wave height Hs [m]")
+    ax.set_title(f"{name}: DSA, {float(ds.rate):.3g} /year [{float(ds.rate_lo):.3g}, {float(ds.rate_hi):.3g}]")
+    ax.legend(fontsize=7, loc="upper left")
+    fig.tight_layout()
+    atomic_savefig(fig, paths["map"], dpi=120)
+    plt.close(fig)
+    top = g.sort_values("c", ascending=False).head(3)
+    fig, axs = plt.subplots(1, len(top), subplot_kw={"projection": "polar"}, figsize=(4 * max(len(top), 1), 4), squeeze=False)
+    for a, r in zip(axs[0], top.itertuples()):
+        d = df[(df.hs == r.hs) & (df.tz == r.tz)]
+        rate = np.where(d.rate > 0, d.rate, np.nan)
+        sc = a.scatter(np.radians(d.heading), d.speed, c=rate, cmap="magma_r", s=80, norm=LogNorm() if np.isfinite(rate).any() else None)
+        a.set_thetamin(0)
+        a.set_thetamax(180)
+        a.set_title(f"Hs {r.hs:g} m, Tz {r.tz:g} s", fontsize=9)
+        a.set_xlabel("heading [degree] (0 following); radius: speed [kn]", fontsize=7)
+        if np.isfinite(rate).any():
+            fig.colorbar(sc, ax=a, shrink=0.6, label="failures per hour")
+    fig.suptitle(f"{name}: failure rate over heading x speed (operational polar)")
+    fig.tight_layout()
+    atomic_savefig(fig, paths["polar"], dpi=120)
+    plt.close(fig)

@@ -291,6 +291,9 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
              "sense": str(d.criterion_sense[i].values), "verdict": str(d.verdict[i].values),
              "reason": str(d.verdict_reason[i].values), "source": str(d.criterion_source[i].values)}
             for i in range(d.sizes["criterion"])]
+    dsa = _dsa_data(name, results, figdir)
+    if dsa is not None:
+        rows.append(dsa.pop("row"))
     counts = {v: sum(r["verdict"] == v for r in rows) for v in ("PASS", "FAIL", "NOT EVALUATED")}
     wc = {k[3:]: float(d[k]) for k in d.data_vars if k.startswith("wc_")}
 
@@ -312,7 +315,39 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
     return _render("criteria.md.j2", name=name, rows=rows, counts=counts, overrides=d.attrs.get("standards_overridden", "none"),
                    figure=_copy(results / "criteria" / f"{name}_criteria.png", figdir), wc=wc,
                    block=float(d.block_coefficient), deck_edge=float(d.deck_edge_immersion),
-                   flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1)
+                   flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1, dsa=dsa)
+
+
+def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
+    """The direct stability assessment of one ship for its criteria chapter (None if not run)."""
+    p = results / "criteria" / f"{name}_dsa.nc"
+    if not p.exists():
+        return None
+    d = _open(p)
+    a = d.attrs
+    method = d.method.values.astype(str)
+    parts = [{"part": str(k), "cells": int((method == k).sum()), "rate": float(d.part_rate[i]),
+              "lo": float(d.part_rate_lo[i]), "hi": float(d.part_rate_hi[i]), "share": float(d.part_share[i])}
+             for i, k in enumerate(d.part.values)]
+    top = np.argsort(-np.nan_to_num(d.contribution.values))[:8]
+    cells = [{"hs": float(d.hs[i]), "tz": float(d.tz[i]), "heading": float(d.heading[i]), "speed": float(d.speed_kn[i]),
+              "method": str(method[i]), "failures": int(d.failures[i]), "hours": float(d.exposure[i]) / 3600.0,
+              "rate": float(d.cell_rate[i]) * 3600.0, "lo": float(d.cell_rate_lo[i]) * 3600.0,
+              "hi": float(d.cell_rate_hi[i]) * 3600.0, "share": float(d.share[i]), "sigma": float(d.roll_sigma[i])}
+             for i in top]
+    row = {"name": "DSA long-term failure rate (roll beyond the failure angle)", "level": "SGISC direct stability assessment",
+           "value": float(d.rate), "unit": "1/year", "limit": None, "sense": "<=", "verdict": a["row_verdict"],
+           "reason": a["row_reason"], "source": a["row_source"]}
+    return {"row": row, "rate": float(d.rate), "lo": float(d.rate_lo), "hi": float(d.rate_hi), "parts": parts,
+            "cells": cells, "n": int(d.sizes["cell"]), "phi_f": float(d.failure_angle),
+            "governs": a["failure_angle_governed_by"], "fsource": a["failure_angle_source"],
+            "bound": float(d.screen_bound), "width": float(d.interval_width),
+            "ok": bool(a["screening_changes_less_than_interval"]), "covered": float(a["scatter_covered_fraction"]),
+            "cpu": {k: float(a[f"cpu_{k}_s"]) for k in ("build", "screen", "simulate", "total")},
+            "headings": sorted(set(float(x) for x in d.heading.values)),
+            "speeds": sorted(set(float(x) for x in d.speed_kn.values)),
+            "map": _copy(results / "criteria" / f"{name}_dsa_map.png", figdir),
+            "polar": _copy(results / "criteria" / f"{name}_dsa_polar.png", figdir)}
 
 
 def _step_result(results: Path, config: dict, step: str):
@@ -476,7 +511,8 @@ STEPS = [("statics", "Calm-water statics", "statics"), ("waves", "Stability in w
          ("ensemble", "Irregular seas: seaways, step size, extremes, split-time", "ensemble"),
          ("capsize", "Capsize-rate methods against brute force (1-DOF box barge)", "capsize"),
          ("manoeuvring", "6-DOF manoeuvring and surf-riding", "manoeuvring"),
-         ("derivative", "Derivative model against the full model (parametric roll)", "derivative")]
+         ("derivative", "Derivative model against the full model (parametric roll)", "derivative"),
+         ("criteria", "Stability criteria and the direct stability assessment", "criteria")]
 
 
 def validation_rows(results: Path, expected: dict[str, list[tuple[str, str]]]) -> dict[str, list[dict]]:
@@ -562,7 +598,8 @@ def expected_validation(ships: list[str], config: dict) -> dict:
     six = [(config["broaching"]["ship"], config["broaching"]["ship"])] if "broaching" in config else []
     der = [(config["derivative"]["ship"], config["derivative"]["ship"])] if "derivative" in config else []
     return {"statics": [(s, s) for s in ships], "waves": [(s, s) for s in ships], "dynamics": [(s, s) for s in ships],
-            "ensemble": ens, "capsize": one_dof, "manoeuvring": six, "derivative": der}
+            "ensemble": ens, "capsize": one_dof, "manoeuvring": six, "derivative": der,
+            "criteria": [(s, s) for s in ships] + [("dsa_linear", "dsa_linear")]}
 
 
 def build_report(results: str | Path, ships: list[str], config: dict, source: str | Path, out_html: str | Path) -> Path:

@@ -95,3 +95,20 @@ def exact_box_gz(length, breadth, depth, volume, kg, heel_deg) -> np.ndarray:
         wet = r.intersection(box(-1e3, -1e3, 1e3, zw))
         out.append(g[0] - wet.centroid.x)
     return np.array(out)
+
+
+def exact_box_area(length, breadth, depth, volume, kg, a_deg, b_deg) -> float:
+    """Area under the exact box GZ (:func:`exact_box_gz`, odd in heel) from ``a_deg`` to ``b_deg``
+    [m rad] by adaptive quadrature, with the kinks at deck-edge immersion and bilge emergence."""
+    import math
+
+    from scipy.integrate import quad
+
+    def gz(p):
+        return math.copysign(float(exact_box_gz(length, breadth, depth, volume, kg, [abs(p)])[0]), p)
+
+    draft = volume / (length * breadth)
+    kinks = [s * math.degrees(math.atan(x)) for s in (-1, 1)
+             for x in (2 * (depth - draft) / breadth, 2 * draft / breadth)]
+    pts = [k for k in kinks if a_deg < k < b_deg]
+    return quad(gz, a_deg, b_deg, points=pts or None, epsabs=1e-11, limit=200)[0] * math.pi / 180.0

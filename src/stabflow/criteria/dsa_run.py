@@ -1,0 +1,268 @@
+"""Direct stability assessment of one ship with the ensemble engine: every cell of the scatter table
+x headings x speeds, screened cheaply, simulated where it matters, aggregated by :mod:`.dsa`.
+
+A cell is (Hs, Tz, heading, speed) with probability P(Hs, Tz) P(heading) P(speed): the IACS Rec. 34
+North Atlantic table (rows read, ``resources/criteria/iacs_rec34_scatter.yaml``), headings and speeds
+equally likely (stabflow's choice; the circular's operational assumptions were not read). The sea
+of a cell is the two-parameter Bretschneider spectrum at (Hs, Tz), long-crested, through the
+ensemble engine's seaway and 3-DOF model (:mod:`stabflow.statistics.ensemble`).
+
+Failure: roll beyond min(the DSA roll limit, the angle of vanishing stability, the flooding angle),
+each with its source. The lateral-acceleration failure needs a limit no readable source gave: it is
+named as missing in the results, not silently dropped.
+
+Per cell, in order:
+
+1. *Screening run*: ``screen.records`` records of ``screen.duration``. The Gaussian (Rice) rate of
+   |roll| above the failure angle with the run's roll sigma inflated by ``screen.sigma_factor``,
+   nu_hi = 2 nu_0 exp(-phi_f^2 / (2 (k sigma)^2)) with nu_0 = 1 / T_roll (both sides of the roll),
+   is the cell's upper bound; below ``screen.rate`` [1/s] (and no roll beyond half the failure angle
+   in the run) the cell is *screened*: rate = the Rice rate with the run's sigma, bounds [0, nu_hi].
+2. Otherwise *simulated*: ``records`` records of ``duration``; failures are the declustered
+   exceedances of the failure angle (crossings of +-phi_f closer than the decorrelation time of the
+   cell's roll, at least one natural roll period, are one failure; a capsize is one), counted -> *counted*. With none counted, the rate of
+   |roll| peaks beyond phi_f from a Poisson-GPD fit over 3.5 roll sigma (:mod:`stabflow.statistics
+   .extremes`, profile-likelihood interval) -> *extrapolated*; when the tail has too few exceedances
+   to fit, the zero count stays *counted* (its Poisson upper bound enters the interval).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from stabflow.config import Ship, _fill_defaults, schema
+from stabflow.constants import G, KNOT
+from stabflow.criteria import dsa
+from stabflow.criteria.standards import Standards
+from stabflow.io import annotate
+
+FAIL_KEY = "sgisc.direct_stability_assessment.failure_roll_angle_deg"
+ACC_KEY = "sgisc.direct_stability_assessment.lateral_acceleration_limit"
+#: POT threshold of the zero-count cells, in roll sigma (the extremes step's documented default)
+THRESHOLD_SIGMA = 3.5
+
+
+def failure_angle(std: Standards, vanishing: float, flooding: float) -> tuple[float, str]:
+    """The failure roll angle [degree]: min(sourced DSA limit, vanishing stability, flooding), and
+    which one governs."""
+    lim = std.get(FAIL_KEY)
+    cands = {"DSA roll limit": float(lim.value) if lim.available else math.inf,
+             "angle of vanishing stability": vanishing if math.isfinite(vanishing) else math.inf,
+             "flooding angle": flooding if math.isfinite(flooding) else math.inf}
+    which = min(cands, key=cands.get)
+    if not math.isfinite(cands[which]):
+        return math.nan, "no failure angle: the DSA roll limit is not sourced and GZ stays positive"
+    return cands[which], which
+
+
+def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = None) -> xr.Dataset:
+    """All cells with nonzero probability: P(Hs, Tz) of the scatter rows read x equally likely
+    headings x equally likely speeds. Attributes: the scatter table's covered fraction."""
+    P = dsa.scatter_probabilities(std.raw["iacs_rec34_scatter"])
+    hs, tz = np.meshgrid(P["hs"].values, P["tz"].values, indexing="ij")
+    p = P.values
+    ok = np.isfinite(p) & (p > 0)
+    if hs_max is not None:
+        ok &= hs <= hs_max
+    h = np.asarray(headings_deg, float)
+    v = np.asarray(speeds_kn, float)
+    rows = [(a, b, m, u, c / len(h) / len(v)) for a, b, c in zip(hs[ok], tz[ok], p[ok]) for m in h for u in v]
+    H, T, M, U, PR = (np.array(x, float) for x in zip(*rows))
+    ds = xr.Dataset({"probability": ("cell", PR)},
+                    coords={"cell": np.arange(len(PR)), "hs": ("cell", H), "tz": ("cell", T),
+                            "heading": ("cell", M), "speed_kn": ("cell", U)})
+    ds.attrs.update(scatter_covered_fraction=float(P.attrs.get("covered_fraction", np.nan)),
+                    scatter_source=str(std.raw["iacs_rec34_scatter"]["meta"]["document"]),
+                    probabilities="P(Hs, Tz) from the scatter table x 1/headings x 1/speeds (headings and speeds equally "
+                                  "likely: stabflow's choice)")
+    return ds
+
+
+def condition(cfg: dict, ship: str, hs: float, tz: float, heading: float, speed_kn: float, records: int,
+              duration: float, seed: int, phi_f: float, floor: float) -> dict:
+    """An ensemble condition (the ensembles schema, defaults filled) for one cell."""
+    tp = tz / dsa.tz_over_tm()
+    c = {"name": "dsa", "ship": ship, "speed_kn": float(speed_kn), "heading_deg": float(heading),
+         "sea": {"spectrum": "bretschneider", "hs": float(hs), "tp": float(tp), "n_components": int(cfg["n_components"])},
+         "records": int(records), "duration": float(duration), "dt": float(cfg["dt"]), "seed": int(seed),
+         "stations": int(cfg["stations"]), "thresholds_deg": [float(phi_f)], "peak_floor_deg": float(floor),
+         "samples": 0, "max_lag": float(cfg["max_lag"])}
+    if cfg.get("dynamics"):
+        c["dynamics"] = dict(cfg["dynamics"])
+    return _fill_defaults(schema("config")["properties"]["ensembles"]["items"], c)
+
+
+def _models(ship: Ship, cfg: dict, headings, speeds, hydro, phi_f):
+    """One engine model per (heading, speed): hull, statics, coefficients (speed-dependent damping)
+    and the sectional tables are built once and shared by the cells."""
+    from stabflow.statistics.ensemble import build_model
+
+    out = {}
+    for m in headings:
+        for u in speeds:
+            c = condition(cfg, ship.name, 1.0, 8.0, m, u, 1, 60.0, 0, phi_f, 1.0)
+            out[(float(m), float(u))] = build_model(ship, c, hydro)
+    return out
+
+
+def failures(ens: xr.Dataset, window: float) -> int:
+    """Declustered failures: crossings of +-phi_f (the only threshold) closer than ``window`` [s]
+    within a record are one failure; a capsize is one (it crossed phi_f first)."""
+    k = 0
+    rec = ens["crossing_record"].values
+    t = ens["crossing_time"].values
+    for r in np.unique(rec):
+        tt = np.sort(t[rec == r])
+        k += 1 + int((np.diff(tt) > window).sum())
+    return k
+
+
+def run_cell(model, cond: dict):
+    """Simulate ``cond`` with the engine ``model`` (its sea and records replaced): merged dataset."""
+    from stabflow.statistics.ensemble import merge, run_shard
+    from stabflow.waves.seaway import Seaway
+
+    m = dataclasses.replace(model, cond=cond, sea=Seaway.from_config(cond["sea"]))
+    return merge([run_shard(m, range(cond["records"]), progress=False)])
+
+
+def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float):
+    """(rate, lo, hi) [1/s] of |roll| peaks beyond phi_f from a Poisson-GPD fit (NaN when too few)."""
+    from stabflow.statistics.extremes import block_estimates
+    from stabflow.statistics.signals import decorrelation_time
+
+    tau = decorrelation_time(ens["roll_autocorrelation"])
+    recs = ens["record"].values
+    hours = float(ens["exposure_hours"])
+    u = THRESHOLD_SIGMA * float(ens["roll_std"])
+    capd = ens["capsized"].values.astype(bool)
+    R, LO, HI, *_ = block_estimates(ens["peak_record"].values, ens["peak_time"].values.astype(float),
+                                    np.abs(ens["peak_value"].values.astype(float)), recs[capd],
+                                    ens["capsize_time"].values[capd], recs, hours, [u], [phi_f], tau, alpha, 0)
+    return R[0, 0] / 3600.0, LO[0, 0] / 3600.0, HI[0, 0] / 3600.0
+
+
+def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None = None, std: Standards | None = None,
+                 progress: bool = False) -> xr.Dataset:
+    """Every cell's rate (method, failures, exposure, rate and interval, roll sigma) for one ship.
+
+    Parameters
+    ----------
+    cfg : the pipeline's ``dsa`` section (headings_deg, froude_numbers, records, duration, screen, dt,
+        stations, n_components, seed, alpha, hs_max).
+    phi_f : failure roll angle [degree].
+    """
+    from tqdm import tqdm
+
+    from stabflow.statistics.signals import decorrelation_time
+
+    std = std or Standards()
+    t0 = time.process_time()
+    # speeds from Froude numbers on the waterline length of the loading
+    from stabflow.geometry import build_hull
+    from stabflow.hydrostatics.statics import compute_statics
+
+    st = compute_statics(ship, build_hull(ship))
+    lwl = float(st["lwl"])
+    speeds = [fn * math.sqrt(G * lwl) / KNOT for fn in cfg["froude_numbers"]]
+    cells = cell_grid(std, cfg["headings_deg"], speeds, cfg.get("hs_max"))
+    models = _models(ship, cfg, cfg["headings_deg"], speeds, hydro, phi_f)
+    t_build = time.process_time() - t0
+    n = cells.sizes["cell"]
+    method = np.empty(n, object)
+    k = np.full(n, -1, np.int64)
+    T = np.full(n, np.nan)
+    r, lo, hi, sig, rmax = (np.full(n, np.nan) for _ in range(5))
+    scr = cfg["screen"]
+    t_screen = t_sim = 0.0
+    for i in tqdm(range(n), desc=f"{ship.name} DSA cells", disable=not progress, mininterval=10):
+        c = cells.isel(cell=i)
+        key = (float(c.heading), float(c.speed_kn))
+        model = models[key]
+        seed = int(cfg["seed"]) + 1000 * i
+        a = time.process_time()
+        cs = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, scr["records"], scr["duration"], seed, phi_f,
+                       1.0)
+        es = run_cell(model, cs)
+        t_screen += time.process_time() - a
+        s = float(es["roll_std"])
+        nu0 = 1.0 / model.roll_period
+        rice = lambda sd: 2 * nu0 * math.exp(-phi_f**2 / (2 * sd**2)) if sd > 0 else 0.0  # noqa: E731
+        bound = rice(scr["sigma_factor"] * s)
+        if bound < scr["rate"] and float(es["roll_max"].max()) < 0.5 * phi_f and int(es["capsize_count"]) == 0:
+            method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = "screened", rice(s), 0.0, bound, s, float(es["roll_max"].max())
+            continue
+        a = time.process_time()
+        cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"], seed + 1, phi_f,
+                       max(0.5, 2.0 * s))
+        ens = run_cell(model, cf)
+        t_sim += time.process_time() - a
+        sig[i], rmax[i] = float(ens["roll_std"]), float(ens["roll_max"].max())
+        T[i] = float(ens["exposure_hours"]) * 3600.0
+        # declustering window: the decorrelation time of the cell's roll (as the extremes step), at
+        # least one natural roll period
+        k[i] = failures(ens, max(model.roll_period, decorrelation_time(ens["roll_autocorrelation"])))
+        method[i] = "counted"
+        if k[i] == 0:
+            rr = _extrapolate(ens, phi_f, float(cfg["alpha"]))
+            if all(np.isfinite(rr)):
+                method[i], (r[i], lo[i], hi[i]) = "extrapolated", rr
+                k[i] = -1
+    cells["method"] = ("cell", method.astype(str))
+    cells["failures"] = ("cell", k)
+    cells["exposure"] = ("cell", T)
+    cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
+    cells["roll_sigma"] = ("cell", sig)
+    cells["roll_max_cell"] = ("cell", rmax)
+    cells.attrs.update(ship=ship.name, failure_angle=phi_f, cpu_build_s=t_build, cpu_screen_s=t_screen, cpu_simulate_s=t_sim,
+                       cpu_total_s=time.process_time() - t0, lwl=lwl)
+    return annotate(cells)
+
+
+def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None = None, std: Standards | None = None,
+               progress: bool = False) -> xr.Dataset:
+    """The ship's direct stability assessment: cells (rates, methods) and the long-term rate.
+
+    Parameters
+    ----------
+    crit : the criteria step's dataset (angle of vanishing stability, flooding angle).
+    cfg : the pipeline's ``dsa`` section.
+
+    Returns
+    -------
+    Dataset along ``cell`` (and ``part``): the cells of :func:`assess_cells`, the long-term rate and
+    its interval (:func:`stabflow.criteria.dsa.long_term_rate`), ``screen_bound`` (the screened
+    cells' upper-bound contribution [1/year]) against ``interval_width`` [1/year], the failure angle
+    and what governs it, and the DSA criterion row (NOT EVALUATED while no standard is sourced).
+    """
+    from stabflow.criteria.verdicts import against
+
+    std = std or Standards()
+    phi_f, governs = failure_angle(std, float(crit["heel_vanishing"]), float(crit["flooding_angle"]))
+    cells = assess_cells(ship, cfg, phi_f, hydro, std, progress)
+    lt = dsa.long_term_rate(cells, float(cfg["alpha"]))
+    # the cells' own rates are in lt as cell_rate (counted cells with their Garwood interval)
+    out = cells.drop_vars(["rate", "rate_lo", "rate_hi"]).merge(lt.drop_vars(["method", "probability"]))
+    parts = list(lt["part"].values)
+    bound = float(lt["part_rate_hi"].values[parts.index("screened")])
+    width = float(lt["rate_hi"] - lt["rate_lo"]) - bound  # the interval of the simulated cells alone
+    out["screen_bound"] = ((), bound, {"units": "1/year", "long_name": "upper bound of the screened cells' contribution"})
+    out["interval_width"] = ((), width, {"units": "1/year", "long_name": "width of the simulated cells' interval"})
+    out["failure_angle"] = ((), phi_f, {"units": "degree", "long_name": "failure roll angle"})
+    acc = std.get(ACC_KEY)
+    row = against("DSA long-term failure rate (roll beyond the failure angle)", "SGISC direct stability assessment",
+                  float(lt["rate"]), "1/year", std.get("sgisc.direct_stability_assessment.long_term_standard"), "<=",
+                  note=f"interval [{float(lt['rate_lo']):.4g}, {float(lt['rate_hi']):.4g}] per year; failure angle "
+                       f"{phi_f:.1f} deg ({governs}); scatter rows read cover "
+                       f"{100 * cells.attrs['scatter_covered_fraction']:.2f} % of the table",
+                  missing=[] if acc.available else [f"{acc.key} (lateral acceleration failure not assessed)"])
+    out.attrs.update(cells.attrs, failure_angle_governed_by=governs, failure_angle_source=std.get(FAIL_KEY).cite(),
+                     row_verdict=row.verdict, row_reason=row.reason, row_source=row.source,
+                     interval=lt.attrs["interval"], alpha=float(cfg["alpha"]),
+                     screening_changes_less_than_interval=int(bound < width))
+    return out

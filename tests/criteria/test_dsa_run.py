@@ -1,0 +1,87 @@
+"""The direct stability assessment engine: failure angle, declustered failures, cell grid, a small
+assessment of the barge (methods, determinism, screening bound)."""
+
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from stabflow.config import load_ship
+from stabflow.criteria import dsa_run
+from stabflow.criteria.standards import Standards
+from tests.conftest import SHIPS
+
+CFG = {"headings_deg": [90.0], "froude_numbers": [0.05], "records": 1, "duration": 300.0, "dt": 0.5, "stations": 11,
+       "n_components": 40, "seed": 7, "alpha": 0.05, "max_lag": 120.0, "hs_max": 3.5, "dynamics": {},
+       "screen": {"records": 1, "duration": 120.0, "sigma_factor": 1.5, "rate": 1e-9}}
+
+
+def test_failure_angle_is_the_smallest_limit():
+    std = Standards()
+    assert dsa_run.failure_angle(std, 70.0, math.nan) == (40.0, "DSA roll limit")
+    assert dsa_run.failure_angle(std, 35.0, math.nan) == (35.0, "angle of vanishing stability")
+    assert dsa_run.failure_angle(std, 70.0, 25.0) == (25.0, "flooding angle")
+
+
+def test_failures_are_declustered_per_record():
+    ens = xr.Dataset({"crossing_record": ("crossing", [0, 0, 0, 1, 2, 2]),
+                      "crossing_time": ("crossing", [10.0, 12.0, 50.0, 100.0, 5.0, 9.9])})
+    # record 0: 10 and 12 s are one failure, 50 s another; record 1: one; record 2: one (4.9 s apart)
+    assert dsa_run.failures(ens, 5.0) == 4
+    assert dsa_run.failures(ens.isel(crossing=slice(0, 0)), 5.0) == 0
+
+
+def test_cell_grid_probabilities():
+    std = Standards()
+    g = dsa_run.cell_grid(std, [30.0, 90.0], [5.0, 10.0, 15.0])
+    assert g.sizes["cell"] % 6 == 0
+    assert float(g.probability.sum()) == pytest.approx(g.attrs["scatter_covered_fraction"], rel=1e-12)
+    assert (g.probability > 0).all()
+
+
+CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan})
+
+
+@pytest.fixture(scope="module")
+def small():
+    ship = load_ship(SHIPS / "barge.yaml")
+    return ship, dsa_run.assess_dsa(ship, CRIT, CFG)
+
+
+def test_small_assessment(small):
+    ship, cells = small
+    m = cells.method.values.astype(str)
+    assert set(m) <= {"screened", "counted", "extrapolated"} and len(m) == cells.sizes["cell"]
+    scr = m == "screened"
+    # a screened cell's bound is below the screening rate and its run stayed below half the failure angle
+    assert (cells.cell_rate_hi.values[scr] < CFG["screen"]["rate"]).all()
+    assert (cells.roll_max_cell.values[scr] < 20.0).all()
+    cnt = m == "counted"
+    assert (cells.exposure.values[cnt] > 0).all() and (cells.failures.values[cnt] >= 0).all()
+    ext = m == "extrapolated"
+    assert (cells.cell_rate_lo.values[ext] <= cells.cell_rate.values[ext]).all()
+    assert (cells.cell_rate.values[ext] <= cells.cell_rate_hi.values[ext]).all()
+    # the roll grows with the sea: the steepest cell rolls more than the mildest
+    i, j = int(np.argmin(cells.hs.values / cells.tz.values**2)), int(np.argmax(cells.hs.values / cells.tz.values**2))
+    assert cells.roll_sigma.values[j] > cells.roll_sigma.values[i]
+
+
+def test_long_term_rate_and_row(small):
+    """The long-term rate is the sum of the cells' contributions, inside its interval; the DSA row
+    is NOT EVALUATED (no sourced standard) and says so; the failure angle is the sourced 40 deg."""
+    _, ds = small
+    assert float(ds.contribution.sum()) == pytest.approx(float(ds.rate), rel=1e-9)
+    assert float(ds.rate_lo) <= float(ds.rate) <= float(ds.rate_hi)
+    assert float(ds.failure_angle) == 40.0 and ds.attrs["failure_angle_governed_by"] == "DSA roll limit"
+    assert ds.attrs["row_verdict"] == "NOT EVALUATED" and "long_term_standard" in ds.attrs["row_reason"]
+    assert ds.attrs["screening_changes_less_than_interval"] in (0, 1)
+
+
+def test_small_assessment_is_deterministic(small):
+    ship, cells = small
+    again = dsa_run.assess_cells(ship, CFG, 40.0)
+    np.testing.assert_array_equal(cells.roll_sigma.values, again.roll_sigma.values)
+    np.testing.assert_array_equal(cells.failures.values, again.failures.values)
+    np.testing.assert_array_equal(cells.cell_rate_hi.values[cells.method.values != "counted"],
+                                  again.rate_hi.values[again.method.values != "counted"])
