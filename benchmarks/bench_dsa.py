@@ -54,10 +54,10 @@ def main():
     print(f"{a.ship}: {ds.sizes['cell']} cells: " + ", ".join(f"{k} {int((m == k).sum())}" for k in ("screened", "counted", "extrapolated")))
     print(f"long-term rate {float(ds.rate):.4g} /year [{float(ds.rate_lo):.4g}, {float(ds.rate_hi):.4g}]; "
           f"screening bound {float(ds.screen_bound):.3g} /year vs interval width {float(ds.interval_width):.3g}")
-    at = ds.attrs
-    print(f"CPU: models {at['cpu_build_s']:.1f} s, screening {at['cpu_screen_s']:.1f} s, simulation "
-          f"{at['cpu_simulate_s']:.1f} s, total {at['cpu_total_s']:.1f} s; wall {wall:.1f} s (one process)")
-    print(f"screening share of the CPU: {at['cpu_screen_s'] / at['cpu_total_s']:.2f}; "
+    cpu = ds.encoding["cpu"]
+    print(f"CPU: models {cpu['build']:.1f} s, screening {cpu['screen']:.1f} s, simulation "
+          f"{cpu['simulate']:.1f} s, total {cpu['total']:.1f} s; wall {wall:.1f} s (one process)")
+    print(f"screening share of the CPU: {cpu['screen'] / cpu['total']:.2f}; "
           f"two cores (cells independent): about {wall / 2 / 3600:.2f} h")
 
 

@@ -232,7 +232,7 @@ def run_roll_decay(ship_yaml, hull_nc, statics_nc, out_nc, fig=None, hydro_nc=No
     return ds
 
 
-def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None) -> xr.Dataset:
+def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None, hydro_nc=None) -> xr.Dataset:
     """criteria step: IS Code and second-generation rows with every intermediate quantity → NetCDF
     (+ GZ / weather-criterion and GM-on-the-wave figure)."""
     from stabflow.criteria.assess import assess
@@ -240,7 +240,7 @@ def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None)
     from stabflow.plots.criteria import criteria_figure
 
     ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
-    ds = assess(ship, hull, st, cfg)
+    ds = assess(ship, hull, st, cfg, hydro=_open_optional(hydro_nc))
     if figure:
         criteria_figure(ds, figure, title=f"{ship.name}: IS Code weather criterion and GM on a wave λ = L")
     write_netcdf(ds, out_nc)
@@ -258,6 +258,9 @@ def run_dsa(ship_yaml, criteria_nc, cfg: dict, out_nc, figures: dict | None = No
     ship = load_ship(ship_yaml)
     crit = _open_optional(criteria_nc)
     ds = assess_dsa(ship, crit, cfg, _open_optional(hydro_nc), progress=progress)
+    import logging
+
+    logging.getLogger(__name__).info("dsa %s: CPU seconds %s", ship.name, ds.encoding.get("cpu"))
     if figures:
         dsa_figures(ds, figures, ship.name)
     write_netcdf(ds, out_nc)

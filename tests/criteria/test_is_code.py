@@ -17,7 +17,9 @@ from stabflow.hydrostatics.statics import compute_statics
 from stabflow.validation.references import exact_box_gz
 
 L, B, D, T, KG = 100.0, 20.0, 12.0, 6.0, 7.0
-CFG = {"steepness": [0.02, 0.04], "crest_positions": 8}
+CFG = {"steepness": [0.02, 0.04], "crest_positions": 8,
+       "parametric": {"headings_deg": [180.0], "froude_numbers": [0.1], "steepness": [0.04], "duration": 60.0, "dt": 0.2,
+                      "phi0_deg": 5.0, "stations": 11}}
 
 
 @pytest.fixture(scope="module")
@@ -124,7 +126,26 @@ def test_failing_loading_fails():
     assert "PASS" in verdicts.values()  # angle of GZmax 45 deg and GM0 0.2 m
 
 
-def test_keel_area():
-    class S:
-        data = {"dynamics": {"bilge_keels": {"span": 0.5, "x_start": -10.0, "x_end": 10.0}}}
-    assert keel_area(S) == pytest.approx(0.5 * 20 * 2)
+def test_weather_criterion_fails_when_the_wind_exceeds_gzmax():
+    """A gust lever above the largest righting arm: FAIL on both rows (not NOT EVALUATED)."""
+    std = Standards()
+    heel = np.arange(0, 90.01, 0.5)
+    gz = 0.3 * np.sin(np.radians(2 * heel)).clip(0)
+    stab = is_code.Stability(heel, gz, 0.6, 5.0, 4.0, 10.0, 60.0, 0.6, 1000.0, 30.0)
+    rows, q = is_code.weather_criterion(stab, std, is_code.Windage(4000.0, 5.0))
+    assert q["wc_lw1"] > 0.3
+    assert [r.verdict for r in rows] == ["FAIL", "FAIL"]
+
+
+def test_k_from_bilge_keels_of_a_real_ship_config(ship_file):
+    """Bilge keels given at the top level of a ship config reach the roll-back factor k (table)."""
+    p = ship_file("wigley", bilge_keels={"span": 0.5, "length": 40.0, "x_centre": 0.0})
+    ship = load_ship(p)
+    ak = keel_area(ship)
+    assert ak == pytest.approx(0.5 * 40.0 * 2)
+    heel = np.arange(0, 90.01, 1.0)
+    stab = is_code.Stability(heel, np.sin(np.radians(heel)), 1.0, 3.6, 6.25, 10.0, 100.0, 0.44, 4000.0, 30.0)
+    k = is_code.roll_back(stab, Standards(), "round", ak)["k"]
+    # 100 Ak / (L B) = 4: the table's last row, 0.70
+    assert k == pytest.approx(0.70)
+    assert is_code.roll_back(stab, Standards(), "round", 0.0)["k"] == 1.0

@@ -5,6 +5,7 @@ rule criteria:
         hull=f"{RESULTS}/hull/{{ship}}.nc",
         statics=f"{RESULTS}/statics/{{ship}}.nc",
         data=criteria_data(),
+        hydro=hydro_first,
     output:
         nc=f"{RESULTS}/criteria/{{ship}}.nc",
         fig=f"{RESULTS}/criteria/{{ship}}_criteria.png",

@@ -45,22 +45,27 @@ def windage(ship: Ship, sec: Sections, st: xr.Dataset) -> is_code.Windage | None
 
 
 def keel_area(ship: Ship) -> float:
-    """Total bilge-keel area Ak [m^2] (span x length x count) from dynamics.bilge_keels, 0 if none."""
-    bk = ship.data.get("dynamics", {}).get("bilge_keels")
+    """Total bilge-keel area Ak [m^2] (span x length x count) from the ship's ``bilge_keels``, 0 if none."""
+    from stabflow.dynamics.roll_damping import BilgeKeels
+
+    bk = ship.data.get("bilge_keels")
     if not bk:
         return 0.0
-    length = bk.get("length", (bk.get("x_end", 0.0) - bk.get("x_start", 0.0)))
-    return float(bk["span"] * length * bk.get("count", 2))
+    k = BilgeKeels.from_config(bk)
+    return float(k.span * k.length * k.count)
 
 
-def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standards | None = None) -> xr.Dataset:
+def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standards | None = None,
+           hydro: xr.Dataset | None = None) -> xr.Dataset:
     """Every criterion of the ship: rows along ``criterion`` plus the GZ curve, the weather
     criterion's quantities and the level-1 curves over wave steepness.
 
     Parameters
     ----------
     cfg : the pipeline's ``criteria`` section (``steepness``: H/lambda grid of the level-1 curves,
-        ``crest_positions``, ``overrides``: optional override file).
+        ``crest_positions``, ``overrides``: optional override file, ``parametric``: the regular-wave
+        cases of :func:`stabflow.criteria.sgisc.parametric_roll_cases`).
+    hydro : Capytaine coefficients for ships whose dynamics use them.
     """
     std = std or Standards(cfg.get("overrides"))
     sec = Sections(hull)
@@ -70,8 +75,11 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     wrows, wq = is_code.weather_criterion(stab, std, windage(ship, sec, st), crit.get("bilge", "round"), keel_area(ship))
     rows += wrows
     V = float(st["volume"])
-    gw = sgisc.gm_on_wave(sec, V, float(st["lcg"]), stab.kg, stab.lwl, cfg["steepness"], cfg["crest_positions"],
-                          draft=stab.draft)
+    # the curves' grid plus the circular's steepnesses where sourced, so the verdicts are read at them
+    sws = [std.get_or_missing(f"{sgisc.SG}.{m}.level_1.wave_steepness_SW", "") for m in
+           ("pure_loss_of_stability", "parametric_rolling")]
+    grid = sorted(set(float(x) for x in cfg["steepness"]) | {float(w.value) for w in sws if w.available})
+    gw = sgisc.gm_on_wave(sec, V, float(st["lcg"]), stab.kg, stab.lwl, grid, cfg["crest_positions"], draft=stab.draft)
     speed = crit.get("service_speed_kn")
     fn = speed * KNOT / math.sqrt(G * stab.lwl) if speed is not None else None
     mid = int(np.argmin(np.abs(sec.x)))
@@ -93,15 +101,20 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     r_pr = sgisc.rpr(std, cm, keel_area(ship), stab.lwl, stab.breadth, crit.get("bilge", "round"))
     rows += sgisc.level1_rows(gw, simple, stab.gm0, stab.lwl, fn, std, r_pr, reserve)
     q1.update(midship_coefficient=cm, depth_midship=depth, freeboard_volume_ratio=reserve, rpr=r_pr[0])
+    pr = sgisc.parametric_roll_cases(ship, cfg["parametric"], hydro)
+    rows.append(sgisc.parametric_level2_row(pr, std))
     rows += sgisc.pending_rows(std)
     ds = rows_dataset(rows, ship.name)
-    ds = ds.merge(gw)
+    ds = ds.merge(gw).merge(pr)
+    ds.attrs.update(pr.attrs)
     ds["gz"] = ("heel", stab.gz)
     ds = ds.assign_coords(heel=stab.heel)
     for k, v in {**wq, **q1, "deck_edge_immersion": stab.deck_edge, "flooding_angle": stab.flooding,
                  "heel_vanishing": stab.vanishing, "gm": stab.gm0, "block_coefficient": stab.block,
                  "froude_service": np.nan if fn is None else fn}.items():
         ds[k] = float(v)
+    ds.attrs.update(sw_pure_loss=float(sws[0].value) if sws[0].available else np.nan,
+                    sw_parametric=float(sws[1].value) if sws[1].available else np.nan)
     ds.attrs.update(ship=ship.name, standards_overridden="; ".join(std.overrides_summary()) or "none",
                     criteria_data="resources/criteria/is_code_2008.yaml, sgisc.yaml, iacs_rec34_scatter.yaml")
     return annotate(ds)

@@ -71,16 +71,27 @@ def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = No
         ok &= hs <= hs_max
     h = np.asarray(headings_deg, float)
     v = np.asarray(speeds_kn, float)
-    rows = [(a, b, m, u, c / len(h) / len(v)) for a, b, c in zip(hs[ok], tz[ok], p[ok]) for m in h for u in v]
+    # headings stand for a uniform heading on the circle, port and starboard mirrored: 0 and 180 deg
+    # each stand for half as much of it as the headings between (trapezoid weights)
+    wh = np.where((h == 0.0) | (h == 180.0), 0.5, 1.0)
+    wh = wh / wh.sum()
+    rows = [(a, b, m, u, c * w / len(v)) for a, b, c in zip(hs[ok], tz[ok], p[ok]) for m, w in zip(h, wh) for u in v]
     H, T, M, U, PR = (np.array(x, float) for x in zip(*rows))
     ds = xr.Dataset({"probability": ("cell", PR)},
                     coords={"cell": np.arange(len(PR)), "hs": ("cell", H), "tz": ("cell", T),
                             "heading": ("cell", M), "speed_kn": ("cell", U)})
     ds.attrs.update(scatter_covered_fraction=float(P.attrs.get("covered_fraction", np.nan)),
+                    probability_used=float(np.nansum(p[ok])),
                     scatter_source=str(std.raw["iacs_rec34_scatter"]["meta"]["document"]),
-                    probabilities="P(Hs, Tz) from the scatter table x 1/headings x 1/speeds (headings and speeds equally "
-                                  "likely: stabflow's choice)")
+                    probabilities="P(Hs, Tz) from the scatter table x heading weight x 1/speeds (a uniform heading "
+                                  "on the circle, 0 and 180 deg at half weight; speeds equally likely: stabflow's choice)")
     return ds
+
+
+def cell_seed(master: int, *indices: int) -> int:
+    """Seed of one cell and stage from the master seed and the cell's grid indices (independent of
+    the grid's order and of the other cells)."""
+    return int(np.random.SeedSequence([int(master), *map(int, indices)]).generate_state(1)[0])
 
 
 def condition(cfg: dict, ship: str, hs: float, tz: float, heading: float, speed_kn: float, records: int,
@@ -131,12 +142,33 @@ def run_cell(model, cond: dict):
     return merge([run_shard(m, range(cond["records"]), progress=False)])
 
 
-def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float):
-    """(rate, lo, hi) [1/s] of |roll| peaks beyond phi_f from a Poisson-GPD fit (NaN when too few)."""
-    from stabflow.statistics.extremes import block_estimates
-    from stabflow.statistics.signals import decorrelation_time
+def with_initial_heel(model, heel_deg: float):
+    """The engine model starting its records from the equilibrium heeled by ``heel_deg``: the seed of
+    roll in long-crested head and following seas, where the waves excite none."""
+    from stabflow.dynamics._kernels import S_ROLL
 
-    tau = decorrelation_time(ens["roll_autocorrelation"])
+    s0 = model.s0.copy()
+    s0[S_ROLL] += math.radians(heel_deg)
+    return dataclasses.replace(model, s0=s0)
+
+
+def zero_crossing_rate(ens: xr.Dataset, roll_period: float) -> float:
+    """Mean zero up-crossing rate of roll [1/s]: sqrt(m2 / m0) / 2 pi of the run's roll spectrum, at
+    least 1 / T_roll (the spectrum needs records of 512 steps or more)."""
+    if int(ens["psd_count"]) > 0:
+        w = ens["frequency"].values
+        S = ens["roll_psd"].values
+        m0, m2 = np.trapezoid(S, w), np.trapezoid(w**2 * S, w)
+        if m0 > 0:
+            return max(1.0 / roll_period, math.sqrt(m2 / m0) / (2 * math.pi))
+    return 1.0 / roll_period
+
+
+def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float, tau: float):
+    """(rate, lo, hi) [1/s] of declustered |roll| peaks beyond phi_f (window ``tau`` [s], as the
+    counted failures) from a Poisson-GPD fit (NaN when too few exceed the threshold)."""
+    from stabflow.statistics.extremes import block_estimates
+
     recs = ens["record"].values
     hours = float(ens["exposure_hours"])
     u = THRESHOLD_SIGMA * float(ens["roll_std"])
@@ -180,36 +212,49 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
     r, lo, hi, sig, rmax = (np.full(n, np.nan) for _ in range(5))
     scr = cfg["screen"]
     t_screen = t_sim = 0.0
+    # grid indices of each cell (its seeds do not depend on the order of the cells)
+    idx = {k: np.searchsorted(np.unique(cells[k].values), cells[k].values) for k in ("hs", "tz", "heading", "speed_kn")}
+    parametric = float(scr["parametric_deg"])
     for i in tqdm(range(n), desc=f"{ship.name} DSA cells", disable=not progress, mininterval=10):
         c = cells.isel(cell=i)
         key = (float(c.heading), float(c.speed_kn))
         model = models[key]
-        seed = int(cfg["seed"]) + 1000 * i
+        ix = [idx[k][i] for k in ("hs", "tz", "heading", "speed_kn")]
+        # head and following seas: roll is parametric, not Gaussian: never screened
+        gaussian = parametric < key[0] < 180.0 - parametric
         a = time.process_time()
-        cs = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, scr["records"], scr["duration"], seed, phi_f,
-                       1.0)
-        es = run_cell(model, cs)
-        t_screen += time.process_time() - a
-        s = float(es["roll_std"])
-        nu0 = 1.0 / model.roll_period
-        rice = lambda sd: 2 * nu0 * math.exp(-phi_f**2 / (2 * sd**2)) if sd > 0 else 0.0  # noqa: E731
-        bound = rice(scr["sigma_factor"] * s)
-        if bound < scr["rate"] and float(es["roll_max"].max()) < 0.5 * phi_f and int(es["capsize_count"]) == 0:
-            method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = "screened", rice(s), 0.0, bound, s, float(es["roll_max"].max())
-            continue
+        es = None
+        if gaussian:
+            cs = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, scr["records"], scr["duration"],
+                           cell_seed(cfg["seed"], *ix, 0), phi_f, 1.0)
+            es = run_cell(model, cs)
+            t_screen += time.process_time() - a
+            s = float(es["roll_std"])
+            nu0 = zero_crossing_rate(es, model.roll_period)
+
+            def rice(sd):
+                # both sides of the roll, narrow-band Gaussian (Rice)
+                return 2 * nu0 * math.exp(-phi_f**2 / (2 * sd**2)) if sd > 0 else 0.0
+
+            bound = rice(scr["sigma_factor"] * s)
+            if bound < scr["rate"] and float(es["roll_max"].max()) < 0.5 * phi_f and int(es["capsize_count"]) == 0:
+                method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = "screened", rice(s), 0.0, bound, s, float(es["roll_max"].max())
+                continue
         a = time.process_time()
-        cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"], seed + 1, phi_f,
-                       max(0.5, 2.0 * s))
-        ens = run_cell(model, cf)
+        s = float(es["roll_std"]) if es is not None else 1.0
+        cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"],
+                       cell_seed(cfg["seed"], *ix, 1), phi_f, max(0.5, 2.0 * s))
+        ens = run_cell(model if gaussian else with_initial_heel(model, float(cfg["initial_heel_deg"])), cf)
         t_sim += time.process_time() - a
         sig[i], rmax[i] = float(ens["roll_std"]), float(ens["roll_max"].max())
         T[i] = float(ens["exposure_hours"]) * 3600.0
         # declustering window: the decorrelation time of the cell's roll (as the extremes step), at
-        # least one natural roll period
-        k[i] = failures(ens, max(model.roll_period, decorrelation_time(ens["roll_autocorrelation"])))
+        # least one natural roll period; the same for the counted failures and the tail fit
+        window = max(model.roll_period, decorrelation_time(ens["roll_autocorrelation"]))
+        k[i] = failures(ens, window)
         method[i] = "counted"
         if k[i] == 0:
-            rr = _extrapolate(ens, phi_f, float(cfg["alpha"]))
+            rr = _extrapolate(ens, phi_f, float(cfg["alpha"]), window)
             if all(np.isfinite(rr)):
                 method[i], (r[i], lo[i], hi[i]) = "extrapolated", rr
                 k[i] = -1
@@ -219,8 +264,13 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
     cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
     cells["roll_sigma"] = ("cell", sig)
     cells["roll_max_cell"] = ("cell", rmax)
-    cells.attrs.update(ship=ship.name, failure_angle=phi_f, cpu_build_s=t_build, cpu_screen_s=t_screen, cpu_simulate_s=t_sim,
-                       cpu_total_s=time.process_time() - t0, lwl=lwl)
+    cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl,
+                       screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g} below "
+                                 f"{scr['rate']:g} /s and no roll beyond half the failure angle; not applied within "
+                                 f"{parametric:g} deg of head and following seas (records there start from "
+                                 f"{float(cfg['initial_heel_deg']):g} deg heel): a heuristic, not a proven bound")
+    # CPU seconds: for the log and the benchmark, not written (the file must not change between runs)
+    cells.encoding["cpu"] = {"build": t_build, "screen": t_screen, "simulate": t_sim, "total": time.process_time() - t0}
     return annotate(cells)
 
 
@@ -242,15 +292,20 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     """
     from stabflow.criteria.verdicts import against
 
+    from stabflow import StabflowError
+
     std = std or Standards()
     phi_f, governs = failure_angle(std, float(crit["heel_vanishing"]), float(crit["flooding_angle"]))
+    if not math.isfinite(phi_f):
+        raise StabflowError(f"dsa: {ship.name}: {governs}")
     cells = assess_cells(ship, cfg, phi_f, hydro, std, progress)
     lt = dsa.long_term_rate(cells, float(cfg["alpha"]))
     # the cells' own rates are in lt as cell_rate (counted cells with their Garwood interval)
     out = cells.drop_vars(["rate", "rate_lo", "rate_hi"]).merge(lt.drop_vars(["method", "probability"]))
     parts = list(lt["part"].values)
     bound = float(lt["part_rate_hi"].values[parts.index("screened")])
-    width = float(lt["rate_hi"] - lt["rate_lo"]) - bound  # the interval of the simulated cells alone
+    sim = [parts.index(k) for k in ("counted", "extrapolated")]
+    width = float(lt["part_rate_hi"].values[sim].sum() - lt["part_rate_lo"].values[sim].sum())  # simulated cells
     out["screen_bound"] = ((), bound, {"units": "1/year", "long_name": "upper bound of the screened cells' contribution"})
     out["interval_width"] = ((), width, {"units": "1/year", "long_name": "width of the simulated cells' interval"})
     out["failure_angle"] = ((), phi_f, {"units": "degree", "long_name": "failure roll angle"})
@@ -258,9 +313,10 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     row = against("DSA long-term failure rate (roll beyond the failure angle)", "SGISC direct stability assessment",
                   float(lt["rate"]), "1/year", std.get("sgisc.direct_stability_assessment.long_term_standard"), "<=",
                   note=f"interval [{float(lt['rate_lo']):.4g}, {float(lt['rate_hi']):.4g}] per year; failure angle "
-                       f"{phi_f:.1f} deg ({governs}); scatter rows read cover "
-                       f"{100 * cells.attrs['scatter_covered_fraction']:.2f} % of the table",
+                       f"{phi_f:.1f} deg ({governs}); the cells assessed hold "
+                       f"{100 * cells.attrs['probability_used']:.2f} % of the scatter table's probability",
                   missing=[] if acc.available else [f"{acc.key} (lateral acceleration failure not assessed)"])
+    out.encoding.update(cells.encoding)
     out.attrs.update(cells.attrs, failure_angle_governed_by=governs, failure_angle_source=std.get(FAIL_KEY).cite(),
                      row_verdict=row.verdict, row_reason=row.reason, row_source=row.source,
                      interval=lt.attrs["interval"], alpha=float(cfg["alpha"]),

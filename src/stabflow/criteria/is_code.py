@@ -189,7 +189,15 @@ def weather_criterion(stab: Stability, std: Standards, wind: Windage | None, bil
         phi_c = stab.crossing(lw2, start=phi_l2, down=True) if math.isfinite(phi_l2) else nan
         cap = float(std.value(f"{WC}.angle_limits.phi2.cap_deg"))
         phi2 = min(cap, stab.flooding if math.isfinite(stab.flooding) else cap, phi_c if math.isfinite(phi_c) else cap)
-        if math.isfinite(phi0) and math.isfinite(phi_l2) and math.isfinite(rb["phi1"]):
+        gzmax = float(np.max(stab.gz))
+        if lw1 >= gzmax or lw2 >= gzmax:
+            # the wind heels the ship beyond its largest righting arm: no equilibrium (lw1) or no
+            # area b (lw2): the criterion fails, it is not "not evaluated"
+            phi0 = math.inf if lw1 >= gzmax else phi0
+            area_a, area_b = (math.inf, 0.0)
+            q.update(wc_lw1=lw1, wc_lw2=lw2, wc_phi0=phi0, wc_area_a=area_a, wc_area_b=area_b,
+                     wc_windage_area=wind.area, wc_windage_lever=wind.lever)
+        elif math.isfinite(phi0) and math.isfinite(phi_l2) and math.isfinite(rb["phi1"]):
             lo = phi0 - rb["phi1"]
             # area a: between the gust lever and GZ from the roll-back angle to the first intercept
             area_a = lw2 * math.radians(phi_l2 - lo) - stab.area(lo, phi_l2)
@@ -197,17 +205,22 @@ def weather_criterion(stab: Stability, std: Standards, wind: Windage | None, bil
             area_b = stab.area(phi_l2, phi2) - lw2 * math.radians(phi2 - phi_l2) if phi2 > phi_l2 else 0.0
         else:
             area_a = area_b = nan
-        q.update(wc_lw1=lw1, wc_lw2=lw2, wc_phi0=phi0, wc_phi_lw2=phi_l2, wc_phi_c=phi_c, wc_phi2=phi2,
-                 wc_area_a=area_a, wc_area_b=area_b, wc_windage_area=wind.area, wc_windage_lever=wind.lever)
+        if lw1 < gzmax and lw2 < gzmax:
+            q.update(wc_lw1=lw1, wc_lw2=lw2, wc_phi0=phi0, wc_phi_lw2=phi_l2, wc_phi_c=phi_c, wc_phi2=phi2,
+                     wc_area_a=area_a, wc_area_b=area_b, wc_windage_area=wind.area, wc_windage_lever=wind.lever)
     else:
         phi0 = area_a = area_b = nan
     note = "; ".join(x for x in (app_note, wind.note if wind else "") if x)
-    ratio = area_b / area_a if (math.isfinite(area_a) and area_a > 0) else (math.inf if area_a == 0 else nan)
+    if area_a == math.inf:
+        ratio = 0.0
+    else:
+        ratio = area_b / area_a if (math.isfinite(area_a) and area_a > 0) else (math.inf if area_a == 0 else nan)
     rows = [against("weather criterion: area b / area a", lvl + ".1.4", ratio, "-",
                     std.get(f"{WC}.acceptance.area_b_over_area_a_min"), ">=", note=note, missing=missing)]
     lim = std.get(f"{WC}.acceptance.steady_wind_heel_phi0_max.limit_deg")
     frac = std.get(f"{WC}.acceptance.steady_wind_heel_phi0_max.deck_edge_fraction")
-    limit = min(float(lim.value), float(frac.value) * stab.deck_edge)
+    # deck edge never immersed up to 90 deg (NaN): the 16-deg limit alone applies
+    limit = min(float(lim.value), float(frac.value) * stab.deck_edge) if math.isfinite(stab.deck_edge) else float(lim.value)
     r = against("weather criterion: steady-wind heel phi0", lvl + ".1.2", phi0, "deg", lim, "<=",
                 note=(f"limit min({lim.value:g} deg, {frac.value:g} x deck-edge immersion {stab.deck_edge:.1f} deg)"
                       + (f"; {note}" if note else "")), missing=missing)

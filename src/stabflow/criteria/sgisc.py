@@ -97,9 +97,9 @@ def rpr(std: Standards, cm: float, keel_area: float, lwl: float, breadth: float,
     if bilge == "sharp":
         return float(std.value(f"{pr}.RPR_sharp_bilge")), "sharp bilge"
     f = min(100 * keel_area / (lwl * breadth), float(std.value(f"{pr}.RPR_bilge_keel_term_max")))
-    if cm > 0.96:
+    if cm > float(std.value(f"{pr}.RPR_Cm_upper")):
         c = float(std.value(f"{pr}.RPR_coef_Cm_above_0_96"))
-    elif cm >= 0.94:
+    elif cm >= float(std.value(f"{pr}.RPR_Cm_lower")):
         c = float(std.value(f"{pr}.RPR_coef_Cm_0_94_to_0_96_slope")) * cm + float(std.value(f"{pr}.RPR_coef_Cm_0_94_to_0_96_intercept"))
     else:
         c = float(std.value(f"{pr}.RPR_coef_Cm_below_0_94"))
@@ -146,18 +146,22 @@ def level1_rows(gw: xr.Dataset, simple: dict, gm0: float, lwl: float, fn: float 
         rows.append(row)
     lim_l = std.get_or_missing(f"{SG}.surf_riding_broaching.level_1.length_limit_m", f"{CIRC}, surf-riding level 1")
     lim_f = std.get_or_missing(f"{SG}.surf_riding_broaching.level_1.froude_number_limit", f"{CIRC}, surf-riding level 1")
-    rows.append(against("surf-riding/broaching: ship length", "SGISC surf-riding, level 1", lwl, "m", lim_l, ">=",
-                        note="not vulnerable if L is above the limit (or Fn below its limit)"))
-    rows.append(against("surf-riding/broaching: Froude number at the service speed", "SGISC surf-riding, level 1",
-                        fn if fn is not None else math.nan, "-", lim_f, "<=",
-                        missing=[] if fn is not None else ["service speed (ship config criteria.service_speed_kn)"]))
+    # one row: not vulnerable when L is above its limit OR Fn below its limit
+    name, lvl = "surf-riding/broaching: L above the limit or Fn below the limit", "SGISC surf-riding, level 1"
+    if lim_l.available and lwl >= float(lim_l.value):
+        rows.append(against(name, lvl, lwl, "m", lim_l, ">=", note="L above the length limit: not vulnerable"))
+    else:
+        miss = [] if fn is not None else ["service speed (ship config criteria.service_speed_kn)"]
+        if not lim_l.available:
+            miss.append(f"{lim_l.key} ({lim_l.source})")
+        rows.append(against(name, lvl, fn if fn is not None else math.nan, "-", lim_f, "<=", missing=miss,
+                            note=f"L = {lwl:.1f} m" + (f", below the length limit {lim_l.value:g} m" if lim_l.available else "")))
     return rows
 
 
 #: failure-mode levels whose physics is not in stabflow yet: rows stay, NOT EVALUATED, naming both
 PENDING = (
     ("pure loss of stability: max(CR1, CR2)", "SGISC pure loss, level 2", f"{SG}.pure_loss_of_stability.level_2.RPL0"),
-    ("parametric rolling: C1 / C2", "SGISC parametric rolling, level 2", f"{SG}.parametric_rolling.level_2.RPR0"),
     ("surf-riding/broaching: C", "SGISC surf-riding, level 2", f"{SG}.surf_riding_broaching.level_2.R_SR"),
     ("dead ship condition", "SGISC dead ship, level 1", f"{SG}.dead_ship.level_1.standard"),
     ("dead ship condition: long-term failure index C", "SGISC dead ship, level 2", f"{SG}.dead_ship.level_2.RDS0"),
@@ -175,3 +179,140 @@ def pending_rows(std: Standards) -> list[Row]:
         out.append(against(name, level, math.nan, "-", s, "<=",
                            missing=["stabflow's computation of this level (not implemented yet)"]))
     return out
+
+
+def wave_gz_table(sec: Sections, volume: float, lcg: float, kg: float, lam: float, height: float, heel_deg,
+                  n_crest: int = 24) -> np.ndarray:
+    """GZ [m] on a regular wave (length ``lam``, height ``height``) at ``n_crest`` crest positions
+    over one wave length x heels ``heel_deg`` (free sinkage and trim at each), shape (n_crest, heels)."""
+    from stabflow.stability_in_waves.wave_pass import wave_gz
+
+    k = 2 * math.pi / lam
+    xc = np.arange(n_crest) * lam / n_crest
+    return np.array([wave_gz(sec, volume, lcg, kg, 0.5 * height, k, x, heel_deg) for x in xc])
+
+
+def roll_1dof(table: np.ndarray, heel_deg: np.ndarray, lam: float, v_rel: float, inertia: float, b44: float,
+              b44q: float, weight: float, phi0_deg: float, duration: float, dt: float) -> np.ndarray:
+    """Roll [degree] of the 1-DOF model with the restoring moment of the ship on the passing wave:
+
+        (I44 + A44) phi'' + B44 phi' + B44q phi' |phi'| + W GZ(phi; x_c(t)) = 0,
+        x_c(t) = v_rel t  (crest position, periodic over the wave length),
+
+    GZ from :func:`wave_gz_table` (odd in heel), W = the ship's weight [N], RK4 with step ``dt``
+    [s], from rest at ``phi0_deg`` (the level-2 parametric-roll idea of a roll model whose
+    restoring varies as the wave passes; the circular's exact equation was not read). Stops (NaN
+    after) when |phi| leaves the table."""
+    n_x = table.shape[0]
+    h = np.radians(np.asarray(heel_deg, float))
+    hh = np.r_[-h[:0:-1], h]
+    tab = np.concatenate([-table[:, :0:-1], table], axis=1)
+
+    def gz(phi, t):
+        s = (v_rel * t / lam * n_x) % n_x
+        j = int(s)
+        f = s - j
+        row = (1 - f) * tab[j] + f * tab[(j + 1) % n_x]
+        return np.interp(phi, hh, row)
+
+    def rhs(t, y):
+        phi, p = y
+        return np.array([p, -(b44 * p + b44q * p * abs(p) + weight * gz(phi, t)) / inertia])
+
+    n = int(round(duration / dt))
+    out = np.full(n + 1, np.nan)
+    y = np.array([math.radians(phi0_deg), 0.0])
+    out[0] = y[0]
+    for i in range(n):
+        t = i * dt
+        k1 = rhs(t, y)
+        k2 = rhs(t + dt / 2, y + dt / 2 * k1)
+        k3 = rhs(t + dt / 2, y + dt / 2 * k2)
+        k4 = rhs(t + dt, y + dt * k3)
+        y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        if not abs(y[0]) < h[-1]:
+            break
+        out[i + 1] = y[0]
+    return np.degrees(out)
+
+
+def parametric_roll_cases(ship, cfg: dict, hydro: xr.Dataset | None = None) -> xr.Dataset:
+    """Parametric roll in regular waves of the ship's length, following and head seas over speed x
+    steepness, by two routes: the 1-DOF roll with the GZ of the ship on the passing wave
+    (:func:`roll_1dof`) and the 3-DOF volume-based time domain in the same wave from the same heel.
+
+    Parameters
+    ----------
+    cfg : ``parametric`` of the criteria section: steepness (H/lambda), froude_numbers, headings_deg
+        (0 and/or 180), duration [s], dt [s], phi0_deg, stations.
+    hydro : Capytaine coefficients for ships whose dynamics use them (the hydro step's file).
+
+    Returns
+    -------
+    Dataset (heading, froude, steepness): ``pr_roll_1dof``, ``pr_roll_3dof`` (largest |roll| over the
+    last quarter of the run [degree], 90 when it capsized), ``pr_encounter_ratio`` (omega_e / omega_roll).
+    """
+    from stabflow.config import _fill_defaults, schema
+    from stabflow.constants import G, KNOT
+    from stabflow.dynamics import _kernels as K
+    from stabflow.dynamics.derivative import run_full
+    from stabflow.statistics.ensemble import build_model
+
+    heel = np.arange(0.0, 70.01, 1.0)
+    hs = np.asarray(cfg["headings_deg"], float)
+    fns = np.asarray(cfg["froude_numbers"], float)
+    steep = np.asarray(cfg["steepness"], float)
+    r1, r3, ratio = (np.full((len(hs), len(fns), len(steep)), np.nan) for _ in range(3))
+    dt, dur = float(cfg["dt"]), float(cfg["duration"])
+    keep = int(round(0.25 * dur / dt))
+    for b, fn in enumerate(fns):
+        for a, mu in enumerate(hs):
+            c = _fill_defaults(schema("config")["properties"]["ensembles"]["items"],
+                               {"name": "pr", "ship": ship.name, "speed_kn": 0.0, "heading_deg": float(mu), "records": 1,
+                                "stations": int(cfg["stations"]), "duration": dur, "dt": dt})
+            if a == 0 and b == 0:
+                lam = float(build_model(ship, c, hydro).st["lwl"])
+            U = fn * math.sqrt(G * lam)
+            c["speed_kn"] = U / KNOT
+            model = build_model(ship, c, hydro)
+            co, sec, st = model.co, model.sec, model.st
+            k = 2 * math.pi / lam
+            w = math.sqrt(G * k)
+            v_rel = w / k * math.cos(math.radians(mu)) - U
+            ratio[a, b, :] = abs(k * v_rel) * model.roll_period / (2 * math.pi)
+            s0 = model.s0.copy()
+            s0[K.S_ROLL] = math.radians(float(cfg["phi0_deg"]))
+            for j, s in enumerate(steep):
+                H = s * lam
+                tab = wave_gz_table(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]), lam, H, heel)
+                roll = roll_1dof(tab, heel, lam, v_rel, co.i44 + co.a44, co.b44, co.b44q, float(st["mass"]) * G,
+                                 float(cfg["phi0_deg"]), dur, dt)
+                r1[a, b, j] = 90.0 if np.isnan(roll[-1]) else float(np.nanmax(np.abs(roll[-keep:])))
+                out, last = run_full(model, (np.array([0.5 * H]), np.array([w]), np.array([0.0])), float(mu), dur, dt, s0)
+                rr = np.degrees(out[: last + 1, K.S_ROLL])
+                r3[a, b, j] = 90.0 if last < len(out) - 1 else float(np.abs(rr[-keep:]).max())
+    return xr.Dataset(
+        {"pr_roll_1dof": (("pr_heading", "pr_froude", "pr_steepness"), r1),
+         "pr_roll_3dof": (("pr_heading", "pr_froude", "pr_steepness"), r3),
+         "pr_encounter_ratio": (("pr_heading", "pr_froude", "pr_steepness"), ratio)},
+        coords={"pr_heading": hs, "pr_froude": fns, "pr_steepness": steep},
+        attrs={"pr_wave_length": lam, "pr_phi0_deg": float(cfg["phi0_deg"]), "pr_duration": dur})
+
+
+def parametric_level2_row(pr: xr.Dataset, std: Standards) -> Row:
+    """Parametric rolling, level 2 (second check's idea): the largest roll of the 1-DOF model over
+    stabflow's regular wave cases, against the roll-angle standard; NOT EVALUATED while the
+    circular's wave cases, RPR0 and the angle are not sourced (the roll is computed regardless)."""
+    lvl = f"{SG}.parametric_rolling.level_2"
+    wc = std.get("sgisc.wave_data.pure_loss_and_parametric_roll_level2_wave_cases.cases")
+    miss = [f"{wc.key} ({wc.source})"] if not wc.available else []
+    r0 = std.get(f"{lvl}.RPR0")
+    if not r0.available:
+        miss.append(f"{r0.key} ({r0.source})")
+    v = float(pr["pr_roll_1dof"].max())
+    return against("parametric rolling: largest roll of the 1-DOF model with GZ on the wave", "SGISC parametric rolling, level 2",
+                   v, "deg", std.get(f"{lvl}.roll_angle_threshold_deg"), "<=", missing=miss,
+                   note=f"stabflow's cases: lambda = L, headings {', '.join(f'{h:g}' for h in pr.pr_heading.values)} deg, "
+                        f"Fn {', '.join(f'{f:g}' for f in pr.pr_froude.values)}, H/lambda "
+                        f"{', '.join(f'{x:g}' for x in pr.pr_steepness.values)}; the 3-DOF time domain in the same waves "
+                        f"gives {float(pr['pr_roll_3dof'].max()):.1f} deg (results pr_roll_3dof)")

@@ -46,7 +46,8 @@ class Row:
 
     @property
     def verdict(self) -> str:
-        if self.missing or self.limit is None or not math.isfinite(self.value):
+        # an infinite value is a result (e.g. no steady-wind equilibrium: phi0 = inf fails); NaN is not
+        if self.missing or self.limit is None or math.isnan(self.value):
             return "NOT EVALUATED"
         ok = self.value >= self.limit if self.sense == ">=" else self.value <= self.limit
         return "PASS" if ok else "FAIL"
@@ -56,7 +57,7 @@ class Row:
         if self.verdict != "NOT EVALUATED":
             return self.note
         why = list(self.missing)
-        if not math.isfinite(self.value) and not why:
+        if math.isnan(self.value) and not why:
             why = ["the value could not be computed"]
         if self.limit is None and not self.missing:
             why.append("no standard value")

@@ -32,7 +32,9 @@ def criteria_figure(ds: xr.Dataset, path, title: str = ""):
         a1.set_xlim(min(lo - 5, -5), 90)
     else:
         a1.set_xlim(0, 90)
-        a1.text(0.02, 0.95, "weather criterion not evaluated (no windage)", transform=a1.transAxes, va="top", fontsize=8)
+        why = ("no windage in the ship config" if "wc_lw1" not in ds else
+               "the wind levers exceed GZmax: the weather criterion fails")
+        a1.text(0.02, 0.95, f"weather criterion areas not drawn: {why}", transform=a1.transAxes, va="top", fontsize=8)
     a1.axhline(0, color="k", lw=0.5)
     a1.set_xlabel("heel φ [degree]")
     a1.set_ylabel("GZ [m]")

@@ -301,21 +301,23 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
         return {"name": name, "a": a, "b": b, "ratio": a / b if b else float("nan")}
     routes, l1 = [], {"cm": float(d.midship_coefficient), "rpr": float(d.rpr)}
     if "l1_pure_loss_gm_min" in d:
-        from stabflow.criteria.standards import Standards
-
-        std = Standards()
-        s_pl = float(std.value("sgisc.failure_modes.pure_loss_of_stability.level_1.wave_steepness_SW"))
-        s_pr = float(std.value("sgisc.failure_modes.parametric_rolling.level_1.wave_steepness_SW"))
+        # the steepnesses the criteria step used (overrides included)
+        s_pl, s_pr = float(d.attrs["sw_pure_loss"]), float(d.attrs["sw_parametric"])
         routes = [route("GMmin (pure loss)", float(d.l1_pure_loss_gm_min), float(d.gm_wave_min.interp(steepness=s_pl))),
                   route("δGM (parametric rolling)", float(d.l1_parametric_delta_gm1),
                         float(d.delta_gm_wave.interp(steepness=s_pr)))]
         l1.update(pl_dl=float(d.l1_pure_loss_d_L), pr_dh=float(d.l1_parametric_d_H), pr_dl=float(d.l1_parametric_d_L),
                   sw_pl=s_pl, sw_pr=s_pr)
     flooding = float(d.flooding_angle)
+    pr = [{"heading": float(h), "fn": float(f), "s": float(x), "ratio": float(d.pr_encounter_ratio.sel(pr_heading=h, pr_froude=f, pr_steepness=x)),
+           "one": float(d.pr_roll_1dof.sel(pr_heading=h, pr_froude=f, pr_steepness=x)),
+           "three": float(d.pr_roll_3dof.sel(pr_heading=h, pr_froude=f, pr_steepness=x))}
+          for h in d.pr_heading.values for f in d.pr_froude.values for x in d.pr_steepness.values] if "pr_roll_1dof" in d else []
     return _render("criteria.md.j2", name=name, rows=rows, counts=counts, overrides=d.attrs.get("standards_overridden", "none"),
                    figure=_copy(results / "criteria" / f"{name}_criteria.png", figdir), wc=wc,
                    block=float(d.block_coefficient), deck_edge=float(d.deck_edge_immersion),
-                   flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1, dsa=dsa)
+                   flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1, dsa=dsa,
+                   pr=pr, pr_phi0=float(d.attrs.get("pr_phi0_deg", np.nan)), pr_duration=float(d.attrs.get("pr_duration", np.nan)))
 
 
 def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
@@ -343,7 +345,8 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             "governs": a["failure_angle_governed_by"], "fsource": a["failure_angle_source"],
             "bound": float(d.screen_bound), "width": float(d.interval_width),
             "ok": bool(a["screening_changes_less_than_interval"]), "covered": float(a["scatter_covered_fraction"]),
-            "cpu": {k: float(a[f"cpu_{k}_s"]) for k in ("build", "screen", "simulate", "total")},
+            "used": float(a["probability_used"]), "alpha": float(a["alpha"]), "screening": a["screening"],
+            "seconds": _benchmark_seconds(results, f"dsa/{name}.tsv"),
             "headings": sorted(set(float(x) for x in d.heading.values)),
             "speeds": sorted(set(float(x) for x in d.speed_kn.values)),
             "map": _copy(results / "criteria" / f"{name}_dsa_map.png", figdir),

@@ -58,6 +58,8 @@ class Model:
     six: object = None
     #: the fitted derivative model (``model: derivative`` conditions, :mod:`stabflow.dynamics.derivative`)
     derivative: object = None
+    #: the coefficients (mass, inertias, added mass, damping) the model was built with
+    co: object = None
 
     @property
     def dt(self) -> float:
@@ -97,7 +99,7 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
         six = build_six_dof(sec, st, co, s.rho, float(cond["heading_deg"]), float(cond["speed_kn"]) * KNOT,
                             manoeuvring_from_ship(s, sec, st), tables=tables)
     sea = Seaway.from_config(cond["sea"]) if "sea" in cond else None  # regular-wave studies have none
-    model = Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth, co.natural_period("roll"), six)
+    model = Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth, co.natural_period("roll"), six, co=co)
     if cond.get("model", "volume") == "derivative":
         if six is not None:
             from stabflow import StabflowError
