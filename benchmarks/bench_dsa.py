@@ -45,8 +45,8 @@ def main():
         ship = ship.modified(dynamics={"hydro": "config", "roll_damping": "coefficients"})
         print("note: no --hydro file: config coefficients instead of Capytaine + Ikeda")
     hull = build_hull(ship)
-    crit = assess(ship, hull, compute_statics(ship, hull), base["criteria"])
     hydro = xr.open_dataset(a.hydro).load() if a.hydro else None
+    crit = assess(ship, hull, compute_statics(ship, hull), base["criteria"], hydro=hydro)
     t0 = time.time()
     ds = assess_dsa(ship, crit, cfg, hydro, progress=True)
     wall = time.time() - t0

@@ -19,7 +19,8 @@ from stabflow.validation.references import exact_box_gz
 L, B, D, T, KG = 100.0, 20.0, 12.0, 6.0, 7.0
 CFG = {"steepness": [0.02, 0.04], "crest_positions": 8,
        "parametric": {"headings_deg": [180.0], "froude_numbers": [0.1], "steepness": [0.04], "duration": 60.0, "dt": 0.2,
-                      "phi0_deg": 5.0, "stations": 11}}
+                      "phi0_deg": 5.0, "stations": 11},
+       "surf_riding": {"wavelength_ratios": [1.5], "steepness": [0.04]}}
 
 
 @pytest.fixture(scope="module")

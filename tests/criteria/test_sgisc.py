@@ -135,3 +135,16 @@ def test_roll_1dof_free_decay_and_mathieu():
         r = roll_1dof(tab, heel, lam, v_rel, inertia, b44, 0.0, weight, 1.0, 300.0, 0.05)
         late = np.nanmax(np.abs(r[-1000:]))
         assert (late > 2.0) if grows else (late < 0.5), (eps, late)
+
+
+def test_surf_riding_level2_physics():
+    """Melnikov's critical Froude number for the trawler: finite, falling with steepness (steeper
+    waves capture the ship at lower speed), rising with wave length; the row stays NOT EVALUATED
+    (R_SR and the wave cases are not sourced) and reports the lowest threshold."""
+    trawler = load_ship(SHIPS / "trawler.yaml")
+    sr = sgisc.surf_riding_thresholds(trawler, {"wavelength_ratios": [1.0, 2.0], "steepness": [0.02, 0.05]})
+    f = sr.sr_froude_critical.values
+    assert np.isfinite(f).all() and (f > 0.1).all() and (f < 0.6).all()
+    assert (f[:, 1] < f[:, 0]).all() and (f[1] > f[0]).all()
+    row = sgisc.surf_riding_level2_row(sr, 0.2, Standards())
+    assert row.verdict == "NOT EVALUATED" and "R_SR" in row.reason and f"{f.min():.3f}" in row.note

@@ -162,7 +162,6 @@ def level1_rows(gw: xr.Dataset, simple: dict, gm0: float, lwl: float, fn: float 
 #: failure-mode levels whose physics is not in stabflow yet: rows stay, NOT EVALUATED, naming both
 PENDING = (
     ("pure loss of stability: max(CR1, CR2)", "SGISC pure loss, level 2", f"{SG}.pure_loss_of_stability.level_2.RPL0"),
-    ("surf-riding/broaching: C", "SGISC surf-riding, level 2", f"{SG}.surf_riding_broaching.level_2.R_SR"),
     ("dead ship condition", "SGISC dead ship, level 1", f"{SG}.dead_ship.level_1.standard"),
     ("dead ship condition: long-term failure index C", "SGISC dead ship, level 2", f"{SG}.dead_ship.level_2.RDS0"),
     ("excessive acceleration", "SGISC excessive acceleration, level 1", f"{SG}.excessive_acceleration.level_1.REA1"),
@@ -316,3 +315,60 @@ def parametric_level2_row(pr: xr.Dataset, std: Standards) -> Row:
                         f"Fn {', '.join(f'{f:g}' for f in pr.pr_froude.values)}, H/lambda "
                         f"{', '.join(f'{x:g}' for x in pr.pr_steepness.values)}; the 3-DOF time domain in the same waves "
                         f"gives {float(pr['pr_roll_3dof'].max()):.1f} deg (results pr_roll_3dof)")
+
+
+def surf_riding_thresholds(ship, cfg: dict) -> xr.Dataset:
+    """Surf-riding level-2 physics: the critical Froude number of Melnikov's method on the surge
+    equation (:func:`stabflow.dynamics.surf_riding.melnikov_threshold`, the ship's own resistance
+    and Froude-Krylov surge force) in regular following waves over lambda/L x H/lambda. The
+    resistance is the 6-DOF model's calm-water resistance (the ship's manoeuvring section, or its
+    defaults: ITTC-57 friction with the form factor)."""
+    from stabflow.constants import G, KNOT
+    from stabflow.dynamics.broaching import six_dof_model
+    from stabflow.dynamics.surf_riding import melnikov_threshold
+
+    from stabflow.geometry import build_hull
+    from stabflow.hydrostatics.statics import compute_statics
+
+    from stabflow import StabflowError
+
+    # the commanded speed only sets the model's thrust, which the threshold does not use; roll
+    # damping does not enter the surge equation: the config coefficients stand in for Capytaine/Ikeda
+    try:
+        model = six_dof_model(ship.modified(dynamics={"hydro": "config", "roll_damping": "coefficients"}), 0.0, 10.0,
+                              tables=(91, 51))
+    except StabflowError as e:
+        return xr.Dataset(attrs={"sr_not_computed": f"the 6-DOF surge model could not be built: {e}"})
+    L = float(compute_statics(ship, build_hull(ship))["lwl"])
+    ratios = np.asarray(cfg["wavelength_ratios"], float)
+    steep = np.asarray(cfg["steepness"], float)
+    fn = np.full((len(ratios), len(steep)), np.nan)
+    for i, r in enumerate(ratios):
+        for j, s in enumerate(steep):
+            celerity = math.sqrt(G * r * L / (2 * math.pi))
+            try:
+                u = melnikov_threshold(model, r * L, s * r * L)
+            except ValueError:
+                u = math.nan
+            # no threshold below the celerity (the root sits on the bracket's end): NaN, reported as such
+            fn[i, j] = u / math.sqrt(G * L) if u < 0.999 * celerity else np.nan
+    return xr.Dataset({"sr_froude_critical": (("sr_wavelength_ratio", "sr_steepness"), fn)},
+                      coords={"sr_wavelength_ratio": ratios, "sr_steepness": steep},
+                      attrs={"sr_method": "Melnikov's method on the surge equation (stabflow.dynamics.surf_riding)"})
+
+
+def surf_riding_level2_row(sr: xr.Dataset, fn: float | None, std: Standards) -> Row:
+    """Surf-riding level 2: stabflow computes the Melnikov critical Froude number over regular
+    following waves; the circular's index (wave cases and weights) and R_SR are not sourced."""
+    r = std.get(f"{SG}.surf_riding_broaching.level_2.R_SR")
+    wc = std.get("sgisc.wave_data.level2_wave_scatter_table")
+    miss = [f"{r.key} ({r.source})", "the circular's surf-riding wave cases (not read)"]
+    if "sr_froude_critical" not in sr:
+        return against("surf-riding/broaching: C (Melnikov critical Froude number)", "SGISC surf-riding, level 2",
+                       math.nan, "-", r, "<=", missing=[sr.attrs["sr_not_computed"]] + miss)
+    lowest = float(sr["sr_froude_critical"].min())
+    return against("surf-riding/broaching: C (Melnikov critical Froude number)", "SGISC surf-riding, level 2", math.nan,
+                   "-", r, "<=", missing=miss,
+                   note=f"lowest critical Fn over stabflow's regular following waves {lowest:.3f}"
+                        + (f" against the service Fn {fn:.3f}" if fn is not None else "") + f"; {wc.key}: "
+                        + ("read" if wc.available else "not read"))
