@@ -51,3 +51,19 @@ def test_override_replaces_value_and_records_source(tmp_path):
     s = std.get("is_code_2008.general_criteria.gm0_min")
     assert s.value == 0.35 and s.source == "owner rule 4.1" and str(p) in s.read_at
     assert std.overrides_summary() and "owner rule 4.1" in std.overrides_summary()[0]
+
+
+def test_tables_are_entries_and_can_be_overridden(tmp_path):
+    """A table (pairs) is checked for provenance like a value and is overridden as a whole; rows
+    must be [x, y] pairs with x ascending."""
+    key = "is_code_2008.weather_criterion.roll_back_angle_phi1.X2_table"
+    std = Standards()
+    x, y, s = std.table(key)
+    assert x[0] == 0.45 and y[-1] == 1.00 and "2.3.4" in s.source
+    p = tmp_path / "o.yaml"
+    p.write_text(f"criteria_overrides:\n  - {{key: {key}, value: [[0.4, 0.7], [0.8, 1.0]], source: 'owner table 7'}}\n")
+    x, y, s = Standards(p).table(key)
+    assert list(x) == [0.4, 0.8] and s.source == "owner table 7"
+    p.write_text(f"criteria_overrides:\n  - {{key: {key}, value: [[0.8, 0.7], [0.4, 1.0]], source: 'x'}}\n")
+    with pytest.raises(StabflowError, match="criteria_overrides.0.value"):
+        Standards(p)

@@ -60,8 +60,12 @@ def _as_text(v) -> str:
 
 
 def _entries(node, prefix: str, out: dict, where: Path) -> None:
-    """Collect every numeric entry (a mapping with ``value``) under ``node``; check its provenance."""
+    """Collect every numeric entry (a mapping with ``value``, or a table with ``pairs``) under
+    ``node``; check its provenance."""
     if isinstance(node, dict):
+        if "pairs" in node and "value" not in node:
+            # a table: its pairs are its value (tables are overridden as a whole)
+            node = {**node, "value": node["pairs"]}
         if "value" in node:
             if not node.get("source"):
                 raise StabflowError(f"{where}: {prefix}.source: every value needs its source")
@@ -113,8 +117,10 @@ class Standards:
                 raise StabflowError(f"{path}: {field}.key: '{key}' is not a criteria entry")
             old = self.entries[key]
             v = item["value"]
-            if isinstance(old.get("value"), list) or "pairs" in old:
-                ok = isinstance(v, list)
+            if isinstance(old.get("value"), list):
+                ok = (isinstance(v, list) and len(v) >= 2 and all(isinstance(r, list) and len(r) == 2 and all(
+                    isinstance(x, (int, float)) and not isinstance(x, bool) for x in r) for r in v)
+                      and all(a[0] < b[0] for a, b in zip(v, v[1:])))
             else:
                 ok = isinstance(v, (int, float)) and not isinstance(v, bool)
             if not ok:
@@ -156,9 +162,8 @@ class Standards:
 
         node = self.entries.get(key)
         if node is None:
-            # tables carry pairs rather than value; find them under the raw tree
-            node = self._node(key)
-        pairs = node.get("pairs") if node.get("value") is None else node["value"]
+            raise StabflowError(f"criteria data: no entry '{key}'")
+        pairs = node["value"]
         if pairs is None:
             raise StabflowError(f"criteria data: '{key}' has no table")
         a = np.asarray(pairs, float)

@@ -63,7 +63,14 @@ def criteria_checks(ship: Ship, crit: xr.Dataset) -> list[Check]:
         rows.append(run_check(lambda: float(crit.wc_area_b) / area_b() - 1, "weather criterion area b (box)", "1", ref,
                               tolerance=TOL_WEATHER))
         rows.append(run_check(lambda: float(exact_box_gz(L, B, D, V, KG, [float(crit.wc_phi0)])[0]) - float(crit.wc_lw1),
-                              "weather criterion: GZ at phi0 minus lw1 (box)", "m", ref, tolerance=1e-4))
+                              "weather criterion: exact GZ at phi0 minus lw1 (box)", "m", ref, tolerance=1e-4))
+        rows.append(run_check(lambda: float(exact_box_gz(L, B, D, V, KG, [pl])[0]) - lw2,
+                              "weather criterion: exact GZ at the first lw2 intercept minus lw2 (box)", "m", ref,
+                              tolerance=1e-4))
+        if math.isfinite(float(crit.wc_phi_c)):
+            rows.append(run_check(lambda: float(exact_box_gz(L, B, D, V, KG, [float(crit.wc_phi_c)])[0]) - lw2,
+                                  "weather criterion: exact GZ at the second lw2 intercept minus lw2 (box)", "m", ref,
+                                  tolerance=1e-4))
     else:
         rows.append(Check.failed("weather criterion areas (box)", "the criteria step did not compute the weather "
                                  "criterion for the box (windage missing in the ship config)", "1", ref, tolerance=TOL_WEATHER))
