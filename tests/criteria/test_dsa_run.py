@@ -31,6 +31,18 @@ def test_failures_are_declustered_per_record():
     # record 0: 10 and 12 s are one failure, 50 s another; record 1: one; record 2: one (4.9 s apart)
     assert dsa_run.failures(ens, 5.0) == 4
     assert dsa_run.failures(ens.isel(crossing=slice(0, 0)), 5.0) == 0
+    np.testing.assert_array_equal(dsa_run.failures_per_record(ens, 5.0), [2, 1, 1])
+
+
+def test_count_dispersion():
+    """Pearson chi-square over dof: equal counts give 0, Poisson counts about 1, clustered ones more."""
+    assert dsa_run.count_dispersion([np.array([2, 2, 2])]) == (0.0, 2)
+    rng = np.random.default_rng(3)
+    d, dof = dsa_run.count_dispersion([rng.poisson(3.0, 4) for _ in range(500)])
+    assert dof == 1500 and abs(d - 1) < 0.12
+    d2, _ = dsa_run.count_dispersion([2 * rng.poisson(1.5, 4) for _ in range(500)])
+    assert d2 > 1.6
+    assert np.isnan(dsa_run.count_dispersion([np.array([0, 0]), np.array([3])])[0])
 
 
 def test_cell_grid_probabilities():

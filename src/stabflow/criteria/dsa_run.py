@@ -45,6 +45,8 @@ FAIL_KEY = "sgisc.direct_stability_assessment.failure_roll_angle_deg"
 ACC_KEY = "sgisc.direct_stability_assessment.lateral_acceleration_limit"
 #: POT threshold of the zero-count cells, in roll sigma (the extremes step's documented default)
 THRESHOLD_SIGMA = 3.5
+#: degrees of freedom needed before a measured count dispersion is used (stabflow's choice)
+MIN_DISPERSION_DOF = 10
 
 
 def failure_angle(std: Standards, vanishing: float, flooding: float) -> tuple[float, str]:
@@ -121,16 +123,36 @@ def _models(ship: Ship, cfg: dict, headings, speeds, hydro, phi_f):
     return out
 
 
-def failures(ens: xr.Dataset, window: float) -> int:
-    """Declustered failures: crossings of +-phi_f (the only threshold) closer than ``window`` [s]
-    within a record are one failure; a capsize is one (it crossed phi_f first)."""
-    k = 0
+def failures_per_record(ens: xr.Dataset, window: float) -> np.ndarray:
+    """Declustered failures of each record (in the order of ``ens.record``): crossings of +-phi_f
+    (the only threshold) closer than ``window`` [s] within a record are one failure; a capsize is
+    one (it crossed phi_f first)."""
     rec = ens["crossing_record"].values
     t = ens["crossing_time"].values
-    for r in np.unique(rec):
+    recs = ens["record"].values if "record" in ens.coords else np.unique(rec)
+    out = np.zeros(len(recs), np.int64)
+    for i, r in enumerate(recs):
         tt = np.sort(t[rec == r])
-        k += 1 + int((np.diff(tt) > window).sum())
-    return k
+        out[i] = (1 + int((np.diff(tt) > window).sum())) if len(tt) else 0
+    return out
+
+
+def failures(ens: xr.Dataset, window: float) -> int:
+    """Declustered failures of all records (:func:`failures_per_record`)."""
+    return int(failures_per_record(ens, window).sum())
+
+
+def count_dispersion(per_record: list[np.ndarray]) -> tuple[float, int]:
+    """Pooled dispersion Var k / E k of the per-record failure counts of the cells with failures
+    (Pearson chi-square over degrees of freedom, records of equal length): (estimate, dof); (NaN, 0)
+    without cells of two or more records with failures."""
+    chi2 = dof = 0
+    for k in per_record:
+        if len(k) >= 2 and k.sum() > 0:
+            m = k.mean()
+            chi2 += float(((k - m) ** 2).sum() / m)
+            dof += len(k) - 1
+    return (chi2 / dof, dof) if dof else (math.nan, 0)
 
 
 def run_cell(model, cond: dict):
@@ -215,6 +237,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
     # grid indices of each cell (its seeds do not depend on the order of the cells)
     idx = {k: np.searchsorted(np.unique(cells[k].values), cells[k].values) for k in ("hs", "tz", "heading", "speed_kn")}
     parametric = float(scr["parametric_deg"])
+    per_record = []
     for i in tqdm(range(n), desc=f"{ship.name} DSA cells", disable=not progress, mininterval=10):
         c = cells.isel(cell=i)
         key = (float(c.heading), float(c.speed_kn))
@@ -251,7 +274,10 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
         # declustering window: the decorrelation time of the cell's roll (as the extremes step), at
         # least one natural roll period; the same for the counted failures and the tail fit
         window = max(model.roll_period, decorrelation_time(ens["roll_autocorrelation"]))
-        k[i] = failures(ens, window)
+        per = failures_per_record(ens, window)
+        k[i] = int(per.sum())
+        if not int(ens["capsize_count"]):  # records of equal length only
+            per_record.append(per)
         method[i] = "counted"
         if k[i] == 0:
             rr = _extrapolate(ens, phi_f, float(cfg["alpha"]), window)
@@ -264,7 +290,9 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
     cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
     cells["roll_sigma"] = ("cell", sig)
     cells["roll_max_cell"] = ("cell", rmax)
-    cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl,
+    disp, dof = count_dispersion(per_record)
+    cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
+                       count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g} below "
                                  f"{scr['rate']:g} /s and no roll beyond half the failure angle; not applied within "
                                  f"{parametric:g} deg of head and following seas (records there start from "
@@ -299,7 +327,12 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     if not math.isfinite(phi_f):
         raise StabflowError(f"dsa: {ship.name}: {governs}")
     cells = assess_cells(ship, cfg, phi_f, hydro, std, progress)
-    lt = dsa.long_term_rate(cells, float(cfg["alpha"]))
+    # declustered failures are taken as Poisson; where the records allow (cells with two or more
+    # records and failures, at least MIN_DISPERSION_DOF degrees of freedom) an overdispersion
+    # measured from them widens the counted cells' interval (never narrows it)
+    disp, dof = cells.attrs["count_dispersion_estimate"], cells.attrs["count_dispersion_dof"]
+    used = max(1.0, disp) if dof >= MIN_DISPERSION_DOF else 1.0
+    lt = dsa.long_term_rate(cells, float(cfg["alpha"]), dispersion=used)
     # the cells' own rates are in lt as cell_rate (counted cells with their Garwood interval)
     out = cells.drop_vars(["rate", "rate_lo", "rate_hi"]).merge(lt.drop_vars(["method", "probability"]))
     parts = list(lt["part"].values)
@@ -317,6 +350,7 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
                        f"{100 * cells.attrs['probability_used']:.2f} % of the scatter table's probability",
                   missing=[] if acc.available else [f"{acc.key} (lateral acceleration failure not assessed)"])
     out.encoding.update(cells.encoding)
+    out.attrs["count_dispersion_used"] = used
     out.attrs.update(cells.attrs, failure_angle_governed_by=governs, failure_angle_source=std.get(FAIL_KEY).cite(),
                      row_verdict=row.verdict, row_reason=row.reason, row_source=row.source,
                      interval=lt.attrs["interval"], alpha=float(cfg["alpha"]),

@@ -351,6 +351,8 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             "bound": float(d.screen_bound), "width": float(d.interval_width),
             "ok": bool(a["screening_changes_less_than_interval"]), "covered": float(a["scatter_covered_fraction"]),
             "used": float(a["probability_used"]), "alpha": float(a["alpha"]), "screening": a["screening"],
+            "disp": float(a["count_dispersion_estimate"]), "disp_dof": int(a["count_dispersion_dof"]),
+            "disp_used": float(a["count_dispersion_used"]),
             "seconds": _benchmark_seconds(results, f"dsa/{name}.tsv"),
             "headings": sorted(set(float(x) for x in d.heading.values)),
             "speeds": sorted(set(float(x) for x in d.speed_kn.values)),
