@@ -67,3 +67,14 @@ def test_tables_are_entries_and_can_be_overridden(tmp_path):
     p.write_text(f"criteria_overrides:\n  - {{key: {key}, value: [[0.8, 0.7], [0.4, 1.0]], source: 'x'}}\n")
     with pytest.raises(StabflowError, match="criteria_overrides.0.value"):
         Standards(p)
+
+
+def test_round_off_meets_the_limit():
+    """A value equal to its limit up to round-off passes; one just beyond it fails."""
+    from stabflow.criteria.verdicts import Row
+
+    assert Row("r", "l", 1.0 - 1e-15, "-", 1.0, ">=", "s").verdict == "PASS"
+    assert Row("r", "l", 1.0 - 1e-6, "-", 1.0, ">=", "s").verdict == "FAIL"
+    assert Row("r", "l", 16.0 + 1e-12, "deg", 16.0, "<=", "s").verdict == "PASS"
+    assert Row("r", "l", float("inf"), "deg", 16.0, "<=", "s").verdict == "FAIL"
+    assert Row("r", "l", float("nan"), "deg", 16.0, "<=", "s").verdict == "NOT EVALUATED"
