@@ -29,20 +29,22 @@ def test_failures_are_declustered_per_record():
     ens = xr.Dataset({"crossing_record": ("crossing", [0, 0, 0, 1, 2, 2]),
                       "crossing_time": ("crossing", [10.0, 12.0, 50.0, 100.0, 5.0, 9.9])})
     # record 0: 10 and 12 s are one failure, 50 s another; record 1: one; record 2: one (4.9 s apart)
-    assert dsa_run.failures(ens, 5.0) == 4
-    assert dsa_run.failures(ens.isel(crossing=slice(0, 0)), 5.0) == 0
+    assert dsa_run.failures_per_record(ens, 5.0).sum() == 4
+    assert dsa_run.failures_per_record(ens.isel(crossing=slice(0, 0)), 5.0).sum() == 0
     np.testing.assert_array_equal(dsa_run.failures_per_record(ens, 5.0), [2, 1, 1])
 
 
 def test_count_dispersion():
-    """Pearson chi-square over dof: equal counts give 0, Poisson counts about 1, clustered ones more."""
-    assert dsa_run.count_dispersion([np.array([2, 2, 2])]) == (0.0, 2)
+    """Var k / E k from the records: equal counts give 0, Poisson counts about 1, clustered ones more."""
+    from stabflow.criteria.dsa import count_dispersion
+
+    assert count_dispersion([np.array([2, 2, 2])], 1.0) == (0.0, 2)
     rng = np.random.default_rng(3)
-    d, dof = dsa_run.count_dispersion([rng.poisson(3.0, 4) for _ in range(500)])
+    d, dof = count_dispersion([rng.poisson(3.0, 4) for _ in range(500)], 1.0)
     assert dof == 1500 and abs(d - 1) < 0.12
-    d2, _ = dsa_run.count_dispersion([2 * rng.poisson(1.5, 4) for _ in range(500)])
+    d2, _ = count_dispersion([2 * rng.poisson(1.5, 4) for _ in range(500)], 1.0)
     assert d2 > 1.6
-    assert np.isnan(dsa_run.count_dispersion([np.array([0, 0]), np.array([3])])[0])
+    assert np.isnan(count_dispersion([np.array([0, 0]), np.array([3])], 1.0)[0])
 
 
 def test_cell_grid_probabilities():
@@ -53,7 +55,7 @@ def test_cell_grid_probabilities():
     assert (g.probability > 0).all()
 
 
-CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan})
+CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan, "lwl": 100.0})
 
 
 @pytest.fixture(scope="module")
@@ -102,7 +104,7 @@ def test_long_term_rate_and_row(small):
 
 def test_small_assessment_is_deterministic(small):
     ship, cells = small
-    again = dsa_run.assess_cells(ship, CFG, 40.0)
+    again = dsa_run.assess_cells(ship, CFG, 40.0, 100.0)
     np.testing.assert_array_equal(cells.roll_sigma.values, again.roll_sigma.values)
     np.testing.assert_array_equal(cells.failures.values, again.failures.values)
     np.testing.assert_array_equal(cells.cell_rate_hi.values[cells.method.values != "counted"],

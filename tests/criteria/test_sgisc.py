@@ -142,7 +142,8 @@ def test_surf_riding_level2_physics():
     waves capture the ship at lower speed), rising with wave length; the row stays NOT EVALUATED
     (R_SR and the wave cases are not sourced) and reports the lowest threshold."""
     trawler = load_ship(SHIPS / "trawler.yaml")
-    sr = sgisc.surf_riding_thresholds(trawler, {"wavelength_ratios": [1.0, 2.0], "steepness": [0.02, 0.05]})
+    L = float(compute_statics(trawler, build_hull(trawler))["lwl"])
+    sr = sgisc.surf_riding_thresholds(trawler, {"wavelength_ratios": [1.0, 2.0], "steepness": [0.02, 0.05]}, L)
     f = sr.sr_froude_critical.values
     assert np.isfinite(f).all() and (f > 0.1).all() and (f < 0.6).all()
     assert (f[:, 1] < f[:, 0]).all() and (f[1] > f[0]).all()

@@ -101,9 +101,9 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     r_pr = sgisc.rpr(std, cm, keel_area(ship), stab.lwl, stab.breadth, crit.get("bilge", "round"))
     rows += sgisc.level1_rows(gw, simple, stab.gm0, stab.lwl, fn, std, r_pr, reserve)
     q1.update(midship_coefficient=cm, depth_midship=depth, freeboard_volume_ratio=reserve, rpr=r_pr[0])
-    pr = sgisc.parametric_roll_cases(ship, cfg["parametric"], hydro)
+    pr = sgisc.parametric_roll_cases(ship, cfg["parametric"], stab.lwl, hydro)
     rows.append(sgisc.parametric_level2_row(pr, std))
-    sr = sgisc.surf_riding_thresholds(ship, cfg["surf_riding"])
+    sr = sgisc.surf_riding_thresholds(ship, cfg["surf_riding"], stab.lwl)
     rows.append(sgisc.surf_riding_level2_row(sr, fn, std))
     rows += sgisc.pending_rows(std)
     ds = rows_dataset(rows, ship.name)
@@ -114,7 +114,7 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     ds["gz"] = ("heel", stab.gz)
     ds = ds.assign_coords(heel=stab.heel)
     for k, v in {**wq, **q1, "deck_edge_immersion": stab.deck_edge, "flooding_angle": stab.flooding,
-                 "heel_vanishing": stab.vanishing, "gm": stab.gm0, "block_coefficient": stab.block,
+                 "heel_vanishing": stab.vanishing, "gm": stab.gm0, "lwl": stab.lwl, "block_coefficient": stab.block,
                  "froude_service": np.nan if fn is None else fn}.items():
         ds[k] = float(v)
     ds.attrs.update(sw_pure_loss=float(sws[0].value) if sws[0].available else np.nan,

@@ -171,6 +171,23 @@ def fay_feuer_interval(k, w, alpha: float = 0.05, dispersion=1.0) -> tuple[float
     return y, lo, hi
 
 
+def count_dispersion(record_counts, weights) -> tuple[float, int]:
+    """Dispersion Var k / E k of the cells' counts, from each cell's records: phi = sum_i w_i^2 s_i^2 /
+    sum_i w_i^2 mean_i (s_i^2 and mean_i the sample variance and mean of cell i's record counts, w_i
+    its weight in the aggregate, e.g. p_i / T_i: the aggregate's own variance ratio), over the cells
+    with two or more records and a count. Returns (phi, degrees of freedom sum (n_i - 1)); (NaN, 0)
+    without such cells."""
+    num = den = 0.0
+    dof = 0
+    for k, w in zip(record_counts, np.broadcast_to(np.asarray(weights, float), (len(record_counts),))):
+        k = np.asarray(k, float)
+        if len(k) >= 2 and k.sum() > 0:
+            num += w**2 * k.var(ddof=1)
+            den += w**2 * k.mean()
+            dof += len(k) - 1
+    return (num / den, dof) if dof else (float("nan"), 0)
+
+
 def _check_cells(cells: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
     p = np.asarray(cells["probability"].values, float)
     method = np.asarray(cells["method"].values).astype(str)
@@ -599,8 +616,8 @@ def dsa_verification(level_deg: float = 30.0, duration: float = 3 * 3600.0, reco
     kr = kr.reshape(n, records)
     k = kr.sum(axis=1)
     T = np.full(n, T1 * records)
-    w2 = (p / T) ** 2
-    phi = float(np.sum(w2 * kr.var(axis=1, ddof=1)) / np.sum(w2 * kr.mean(axis=1))) if k.sum() > 0 else 1.0
+    phi, _ = count_dispersion(list(kr), p / T)
+    phi = 1.0 if not np.isfinite(phi) else phi
     nan = np.full(n, np.nan)
     cells = xr.Dataset(
         {"probability": ("cell", p), "failures": ("cell", k), "exposure": ("cell", T), "rate_lo": ("cell", nan),

@@ -2,8 +2,9 @@
 x headings x speeds, screened cheaply, simulated where it matters, aggregated by :mod:`.dsa`.
 
 A cell is (Hs, Tz, heading, speed) with probability P(Hs, Tz) P(heading) P(speed): the IACS Rec. 34
-North Atlantic table (rows read, ``resources/criteria/iacs_rec34_scatter.yaml``), headings and speeds
-equally likely (stabflow's choice; the circular's operational assumptions were not read). The sea
+North Atlantic table (rows read, ``resources/criteria/iacs_rec34_scatter.yaml``), a uniform heading on
+the circle (0 and 180 degree at half weight) and equally likely speeds (stabflow's choice; the
+circular's operational assumptions were not read). The sea
 of a cell is the two-parameter Bretschneider spectrum at (Hs, Tz), long-crested, through the
 ensemble engine's seaway and 3-DOF model (:mod:`stabflow.statistics.ensemble`).
 
@@ -15,12 +16,16 @@ Per cell, in order:
 
 1. *Screening run*: ``screen.records`` records of ``screen.duration``. The Gaussian (Rice) rate of
    |roll| above the failure angle with the run's roll sigma inflated by ``screen.sigma_factor``,
-   nu_hi = 2 nu_0 exp(-phi_f^2 / (2 (k sigma)^2)) with nu_0 = 1 / T_roll (both sides of the roll),
-   is the cell's upper bound; below ``screen.rate`` [1/s] (and no roll beyond half the failure angle
-   in the run) the cell is *screened*: rate = the Rice rate with the run's sigma, bounds [0, nu_hi].
+   nu_hi = 2 nu_0 exp(-phi_f^2 / (2 (k sigma)^2)) with nu_0 the run's zero up-crossing rate, at least
+   1 / T_roll (both sides of the roll), is the cell's bound (a heuristic); below ``screen.rate``
+   [1/s] (and no roll beyond half the failure angle in the run) the cell is *screened*: rate = the
+   Rice rate with the run's sigma, bounds [0, nu_hi]. Head and following seas (within
+   ``screen.parametric_deg``) are never screened: roll there is parametric, not Gaussian; their
+   records start from ``initial_heel_deg``.
 2. Otherwise *simulated*: ``records`` records of ``duration``; failures are the declustered
    exceedances of the failure angle (crossings of +-phi_f closer than the decorrelation time of the
-   cell's roll, at least one natural roll period, are one failure; a capsize is one), counted -> *counted*. With none counted, the rate of
+   cell's roll, at least one natural roll period, are one failure; a capsize is one) -> *counted*.
+   With none counted, the rate of
    |roll| peaks beyond phi_f from a Poisson-GPD fit over 3.5 roll sigma (:mod:`stabflow.statistics
    .extremes`, profile-likelihood interval) -> *extrapolated*; when the tail has too few exceedances
    to fit, the zero count stays *counted* (its Poisson upper bound enters the interval).
@@ -137,24 +142,6 @@ def failures_per_record(ens: xr.Dataset, window: float) -> np.ndarray:
     return out
 
 
-def failures(ens: xr.Dataset, window: float) -> int:
-    """Declustered failures of all records (:func:`failures_per_record`)."""
-    return int(failures_per_record(ens, window).sum())
-
-
-def count_dispersion(per_record: list[np.ndarray]) -> tuple[float, int]:
-    """Pooled dispersion Var k / E k of the per-record failure counts of the cells with failures
-    (Pearson chi-square over degrees of freedom, records of equal length): (estimate, dof); (NaN, 0)
-    without cells of two or more records with failures."""
-    chi2 = dof = 0
-    for k in per_record:
-        if len(k) >= 2 and k.sum() > 0:
-            m = k.mean()
-            chi2 += float(((k - m) ** 2).sum() / m)
-            dof += len(k) - 1
-    return (chi2 / dof, dof) if dof else (math.nan, 0)
-
-
 def run_cell(model, cond: dict):
     """Simulate ``cond`` with the engine ``model`` (its sea and records replaced): merged dataset."""
     from stabflow.statistics.ensemble import merge, run_shard
@@ -177,12 +164,10 @@ def with_initial_heel(model, heel_deg: float):
 def zero_crossing_rate(ens: xr.Dataset, roll_period: float) -> float:
     """Mean zero up-crossing rate of roll [1/s]: sqrt(m2 / m0) / 2 pi of the run's roll spectrum, at
     least 1 / T_roll (the spectrum needs records of 512 steps or more)."""
-    if int(ens["psd_count"]) > 0:
-        w = ens["frequency"].values
-        S = ens["roll_psd"].values
-        m0, m2 = np.trapezoid(S, w), np.trapezoid(w**2 * S, w)
-        if m0 > 0:
-            return max(1.0 / roll_period, math.sqrt(m2 / m0) / (2 * math.pi))
+    S = ens["roll_psd"].values
+    if int(ens["psd_count"]) > 0 and S.any():
+        # Rice's rate at level 0: sqrt(m2 / m0) / 2 pi
+        return max(1.0 / roll_period, dsa.rice_upcrossing_rate(ens["frequency"].values, S, 0.0))
     return 1.0 / roll_period
 
 
@@ -201,8 +186,8 @@ def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float, tau: float):
     return R[0, 0] / 3600.0, LO[0, 0] / 3600.0, HI[0, 0] / 3600.0
 
 
-def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None = None, std: Standards | None = None,
-                 progress: bool = False) -> xr.Dataset:
+def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Dataset | None = None,
+                 std: Standards | None = None, progress: bool = False) -> xr.Dataset:
     """Every cell's rate (method, failures, exposure, rate and interval, roll sigma) for one ship.
 
     Parameters
@@ -210,6 +195,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
     cfg : the pipeline's ``dsa`` section (headings_deg, froude_numbers, records, duration, screen, dt,
         stations, n_components, seed, alpha, hs_max).
     phi_f : failure roll angle [degree].
+    lwl : waterline length [m] of the loading (speeds from the Froude numbers).
     """
     from tqdm import tqdm
 
@@ -217,12 +203,6 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
 
     std = std or Standards()
     t0 = time.process_time()
-    # speeds from Froude numbers on the waterline length of the loading
-    from stabflow.geometry import build_hull
-    from stabflow.hydrostatics.statics import compute_statics
-
-    st = compute_statics(ship, build_hull(ship))
-    lwl = float(st["lwl"])
     speeds = [fn * math.sqrt(G * lwl) / KNOT for fn in cfg["froude_numbers"]]
     cells = cell_grid(std, cfg["headings_deg"], speeds, cfg.get("hs_max"))
     models = _models(ship, cfg, cfg["headings_deg"], speeds, hydro, phi_f)
@@ -237,7 +217,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
     # grid indices of each cell (its seeds do not depend on the order of the cells)
     idx = {k: np.searchsorted(np.unique(cells[k].values), cells[k].values) for k in ("hs", "tz", "heading", "speed_kn")}
     parametric = float(scr["parametric_deg"])
-    per_record = []
+    per_record, weights = [], []
     for i in tqdm(range(n), desc=f"{ship.name} DSA cells", disable=not progress, mininterval=10):
         c = cells.isel(cell=i)
         key = (float(c.heading), float(c.speed_kn))
@@ -278,6 +258,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
         k[i] = int(per.sum())
         if not int(ens["capsize_count"]):  # records of equal length only
             per_record.append(per)
+            weights.append(float(c.probability) / T[i])
         method[i] = "counted"
         if k[i] == 0:
             rr = _extrapolate(ens, phi_f, float(cfg["alpha"]), window)
@@ -290,7 +271,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, hydro: xr.Dataset | None =
     cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
     cells["roll_sigma"] = ("cell", sig)
     cells["roll_max_cell"] = ("cell", rmax)
-    disp, dof = count_dispersion(per_record)
+    disp, dof = dsa.count_dispersion(per_record, weights)
     cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
                        count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g} below "
@@ -308,7 +289,7 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
 
     Parameters
     ----------
-    crit : the criteria step's dataset (angle of vanishing stability, flooding angle).
+    crit : the criteria step's dataset (angle of vanishing stability, flooding angle, waterline length).
     cfg : the pipeline's ``dsa`` section.
 
     Returns
@@ -318,15 +299,14 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     cells' upper-bound contribution [1/year]) against ``interval_width`` [1/year], the failure angle
     and what governs it, and the DSA criterion row (NOT EVALUATED while no standard is sourced).
     """
-    from stabflow.criteria.verdicts import against
-
     from stabflow import StabflowError
+    from stabflow.criteria.verdicts import against
 
     std = std or Standards()
     phi_f, governs = failure_angle(std, float(crit["heel_vanishing"]), float(crit["flooding_angle"]))
     if not math.isfinite(phi_f):
         raise StabflowError(f"dsa: {ship.name}: {governs}")
-    cells = assess_cells(ship, cfg, phi_f, hydro, std, progress)
+    cells = assess_cells(ship, cfg, phi_f, float(crit["lwl"]), hydro, std, progress)
     # declustered failures are taken as Poisson; where the records allow (cells with two or more
     # records and failures, at least MIN_DISPERSION_DOF degrees of freedom) an overdispersion
     # measured from them widens the counted cells' interval (never narrows it)

@@ -11,6 +11,7 @@ and which standard apply is the circular's, and reads as NOT EVALUATED until sou
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -235,7 +236,7 @@ def roll_1dof(table: np.ndarray, heel_deg: np.ndarray, lam: float, v_rel: float,
     return np.degrees(out)
 
 
-def parametric_roll_cases(ship, cfg: dict, hydro: xr.Dataset | None = None) -> xr.Dataset:
+def parametric_roll_cases(ship, cfg: dict, lam: float, hydro: xr.Dataset | None = None) -> xr.Dataset:
     """Parametric roll in regular waves of the ship's length, following and head seas over speed x
     steepness, by two routes: the 1-DOF roll with the GZ of the ship on the passing wave
     (:func:`roll_1dof`) and the 3-DOF volume-based time domain in the same wave from the same heel.
@@ -244,6 +245,7 @@ def parametric_roll_cases(ship, cfg: dict, hydro: xr.Dataset | None = None) -> x
     ----------
     cfg : ``parametric`` of the criteria section: steepness (H/lambda), froude_numbers, headings_deg
         (0 and/or 180), duration [s], dt [s], phi0_deg, stations.
+    lam : wave length [m], the ship's waterline length.
     hydro : Capytaine coefficients for ships whose dynamics use them (the hydro step's file).
 
     Returns
@@ -255,6 +257,7 @@ def parametric_roll_cases(ship, cfg: dict, hydro: xr.Dataset | None = None) -> x
     from stabflow.constants import G, KNOT
     from stabflow.dynamics import _kernels as K
     from stabflow.dynamics.derivative import run_full
+    from stabflow.dynamics.model import parameters
     from stabflow.statistics.ensemble import build_model
 
     heel = np.arange(0.0, 70.01, 1.0)
@@ -264,30 +267,33 @@ def parametric_roll_cases(ship, cfg: dict, hydro: xr.Dataset | None = None) -> x
     r1, r3, ratio = (np.full((len(hs), len(fns), len(steep)), np.nan) for _ in range(3))
     dt, dur = float(cfg["dt"]), float(cfg["duration"])
     keep = int(round(0.25 * dur / dt))
+    k = 2 * math.pi / lam
+    w = math.sqrt(G * k)
+    tables = None
     for b, fn in enumerate(fns):
+        U = fn * math.sqrt(G * lam)
+        c = _fill_defaults(schema("config")["properties"]["ensembles"]["items"],
+                           {"name": "pr", "ship": ship.name, "speed_kn": U / KNOT, "heading_deg": float(hs[0]),
+                            "records": 1, "stations": int(cfg["stations"]), "duration": dur, "dt": dt})
+        # one model per speed (the damping depends on it); the headings differ only in the kernel's
+        # parameter vector
+        model = build_model(ship, c, hydro)
+        co, sec, st = model.co, model.sec, model.st
+        if tables is None:  # GZ on the wave depends on the wave alone: once per steepness
+            tables = [wave_gz_table(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]), lam, x * lam, heel)
+                      for x in steep]
+        s0 = model.s0.copy()
+        s0[K.S_ROLL] = math.radians(float(cfg["phi0_deg"]))
         for a, mu in enumerate(hs):
-            c = _fill_defaults(schema("config")["properties"]["ensembles"]["items"],
-                               {"name": "pr", "ship": ship.name, "speed_kn": 0.0, "heading_deg": float(mu), "records": 1,
-                                "stations": int(cfg["stations"]), "duration": dur, "dt": dt})
-            if a == 0 and b == 0:
-                lam = float(build_model(ship, c, hydro).st["lwl"])
-            U = fn * math.sqrt(G * lam)
-            c["speed_kn"] = U / KNOT
-            model = build_model(ship, c, hydro)
-            co, sec, st = model.co, model.sec, model.st
-            k = 2 * math.pi / lam
-            w = math.sqrt(G * k)
+            m = dataclasses.replace(model, p=parameters(co, model.ship.rho, float(st["lcg"]), float(st["kg"]), float(mu)))
             v_rel = w / k * math.cos(math.radians(mu)) - U
             ratio[a, b, :] = abs(k * v_rel) * model.roll_period / (2 * math.pi)
-            s0 = model.s0.copy()
-            s0[K.S_ROLL] = math.radians(float(cfg["phi0_deg"]))
             for j, s in enumerate(steep):
                 H = s * lam
-                tab = wave_gz_table(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]), lam, H, heel)
-                roll = roll_1dof(tab, heel, lam, v_rel, co.i44 + co.a44, co.b44, co.b44q, float(st["mass"]) * G,
+                roll = roll_1dof(tables[j], heel, lam, v_rel, co.i44 + co.a44, co.b44, co.b44q, float(st["mass"]) * G,
                                  float(cfg["phi0_deg"]), dur, dt)
                 r1[a, b, j] = 90.0 if np.isnan(roll[-1]) else float(np.nanmax(np.abs(roll[-keep:])))
-                out, last = run_full(model, (np.array([0.5 * H]), np.array([w]), np.array([0.0])), float(mu), dur, dt, s0)
+                out, last = run_full(m, (np.array([0.5 * H]), np.array([w]), np.array([0.0])), float(mu), dur, dt, s0)
                 rr = np.degrees(out[: last + 1, K.S_ROLL])
                 r3[a, b, j] = 90.0 if last < len(out) - 1 else float(np.abs(rr[-keep:]).max())
     return xr.Dataset(
@@ -317,18 +323,15 @@ def parametric_level2_row(pr: xr.Dataset, std: Standards) -> Row:
                         f"gives {float(pr['pr_roll_3dof'].max()):.1f} deg (results pr_roll_3dof)")
 
 
-def surf_riding_thresholds(ship, cfg: dict) -> xr.Dataset:
+def surf_riding_thresholds(ship, cfg: dict, L: float) -> xr.Dataset:
     """Surf-riding level-2 physics: the critical Froude number of Melnikov's method on the surge
     equation (:func:`stabflow.dynamics.surf_riding.melnikov_threshold`, the ship's own resistance
     and Froude-Krylov surge force) in regular following waves over lambda/L x H/lambda. The
     resistance is the 6-DOF model's calm-water resistance (the ship's manoeuvring section, or its
-    defaults: ITTC-57 friction with the form factor)."""
-    from stabflow.constants import G, KNOT
+    defaults: ITTC-57 friction with the form factor); ``L`` [m] the waterline length."""
+    from stabflow.constants import G
     from stabflow.dynamics.broaching import six_dof_model
     from stabflow.dynamics.surf_riding import melnikov_threshold
-
-    from stabflow.geometry import build_hull
-    from stabflow.hydrostatics.statics import compute_statics
 
     from stabflow import StabflowError
 
@@ -339,7 +342,6 @@ def surf_riding_thresholds(ship, cfg: dict) -> xr.Dataset:
                               tables=(91, 51))
     except StabflowError as e:
         return xr.Dataset(attrs={"sr_not_computed": f"the 6-DOF surge model could not be built: {e}"})
-    L = float(compute_statics(ship, build_hull(ship))["lwl"])
     ratios = np.asarray(cfg["wavelength_ratios"], float)
     steep = np.asarray(cfg["steepness"], float)
     fn = np.full((len(ratios), len(steep)), np.nan)
