@@ -171,7 +171,8 @@ COMMANDS: dict[str, Command] = {
     "rao": Command("regular-wave sweep of the time-domain model", (SHIP, HULL, STATICS, CONFIG, RAO_CONDITION, OUT, FIGURE, HYDRO),
                    lambda a: steps.run_rao(a.ship, a.hull, a.statics, _pipeline(a)["rao"], a.condition, a.output, a.figure,
                                            a.hydro)),
-    "criteria": Command("IS Code 2008 and second-generation criteria of one ship → NetCDF",
+    "criteria": Command("IS Code 2008 and second-generation criteria of one ship → NetCDF (with --figure, also "
+                        "<ship>_sea_states.png beside it)",
                         (SHIP, HULL, STATICS, CONFIG, OUT, FIGURE, HYDRO),
                         lambda a: steps.run_criteria(a.ship, a.hull, a.statics, _pipeline(a)["criteria"], a.output,
                                                      a.figure, a.hydro)),

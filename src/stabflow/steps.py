@@ -4,6 +4,8 @@ outputs atomically. The workflow scripts (``workflow/scripts/*.py``) and the com
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import xarray as xr
 
 from stabflow import StabflowError
@@ -234,15 +236,18 @@ def run_roll_decay(ship_yaml, hull_nc, statics_nc, out_nc, fig=None, hydro_nc=No
 
 def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None, hydro_nc=None) -> xr.Dataset:
     """criteria step: IS Code and second-generation rows with every intermediate quantity → NetCDF
-    (+ GZ / weather-criterion and GM-on-the-wave figure)."""
+    (+ GZ / weather-criterion and GM-on-the-wave figure, and ``<ship>_sea_states.png`` beside it)."""
     from stabflow.criteria.assess import assess
     from stabflow.io import write_netcdf
-    from stabflow.plots.criteria import criteria_figure
+    from stabflow.plots.criteria import criteria_figure, sea_state_figure
 
     ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
     ds = assess(ship, hull, st, cfg, hydro=_open_optional(hydro_nc))
     if figure:
         criteria_figure(ds, figure, title=f"{ship.name}: IS Code weather criterion and GM on a wave λ = L")
+        # the level-2 sea-state figure beside it: <ship>_sea_states.png
+        sea_state_figure(ds, Path(figure).parent / f"{ship.name}_sea_states.png",
+                         title=f"{ship.name}: second-generation level-2 physics over the IACS Rec. 34 sea states")
     write_netcdf(ds, out_nc)
     return ds
 
@@ -280,13 +285,14 @@ def run_validate_criteria(ship_yaml, criteria_nc, out_nc) -> xr.Dataset:
 
 
 def run_validate_dsa(out_nc) -> xr.Dataset:
-    """validation of the DSA aggregation against Rice's exact rate (linear 1-DOF roll) → NetCDF rows."""
+    """validation of the DSA aggregation against Rice's exact rate (linear 1-DOF roll) and of Grim's
+    effective wave against direct projection → NetCDF rows."""
     from stabflow.criteria.dsa import dsa_verification
     from stabflow.io import write_netcdf
     from stabflow.validation import checks_dataset
-    from stabflow.validation.criteria import dsa_checks
+    from stabflow.validation.criteria import dsa_checks, grim_check
 
-    ds = checks_dataset("dsa_linear", "criteria", dsa_checks(dsa_verification()))
+    ds = checks_dataset("dsa_linear", "criteria", dsa_checks(dsa_verification()) + [grim_check()])
     write_netcdf(ds, out_nc)
     return ds
 

@@ -150,3 +150,22 @@ def test_k_from_bilge_keels_of_a_real_ship_config(ship_file):
     # 100 Ak / (L B) = 4: the table's last row, 0.70
     assert k == pytest.approx(0.70)
     assert is_code.roll_back(stab, Standards(), "round", 0.0)["k"] == 1.0
+
+
+def test_level2_sea_state_rows(barge):
+    """The level-2 rows of pure loss, parametric rolling (C1), dead ship and excessive acceleration are
+    computed and NOT EVALUATED naming their missing standards; their quantities are in the results
+    (the barge's wind heel is the weather criterion's phi0; its crew location the deck amidships)."""
+    ds = barge[3]
+    for name, key in (("pure loss of stability: max(CR1, CR2)", "RPL0"), ("parametric rolling: C1", "RPR0"),
+                      ("dead ship condition: weather", "dead_ship.level_1"), ("dead ship condition: long-term", "RDS0"),
+                      ("excessive acceleration: lateral", "REA1"), ("excessive acceleration: long-term", "REA2")):
+        r = row(ds, name)
+        assert str(r.verdict.values) == "NOT EVALUATED" and key in str(r.verdict_reason.values), name
+    assert float(ds.ds_heel_wind) == pytest.approx(float(ds.wc_phi0))
+    assert float(ds.ea_crew_height) == pytest.approx(D)
+    assert float(ds.ea_height_above_g) == pytest.approx(D - KG)
+    occurs = ds.sea_probability > 0
+    assert bool(ds.ds_roll_std.where(occurs).notnull().sum() == occurs.sum())
+    assert float(ds.ds_long_term_rate) >= 0 and np.all(np.diff(ds.ea_long_term_rate.values) <= 0)
+    assert float(ds.ew_effective_height.max()) > 0 and float(ds.ew_gm_min.min()) > 0

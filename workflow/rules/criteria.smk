@@ -9,6 +9,7 @@ rule criteria:
     output:
         nc=f"{RESULTS}/criteria/{{ship}}.nc",
         fig=f"{RESULTS}/criteria/{{ship}}_criteria.png",
+        seas=f"{RESULTS}/criteria/{{ship}}_sea_states.png",
     params:
         cfg=config["criteria"],
     log:

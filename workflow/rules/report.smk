@@ -8,7 +8,8 @@ rule report:
         metric=f"{RESULTS}/waves/early_stage_C.csv",
         rao=per_ship_condition(f"{RESULTS}/rao/{{ship}}_{{condition}}.nc"),
         roll_decay=per_ship(f"{RESULTS}/roll_decay/{{ship}}.nc"),
-        criteria=per_ship(f"{RESULTS}/criteria/{{ship}}.nc") + per_ship(f"{RESULTS}/criteria/{{ship}}_criteria.png"),
+        criteria=per_ship(f"{RESULTS}/criteria/{{ship}}.nc") + per_ship(f"{RESULTS}/criteria/{{ship}}_criteria.png")
+        + per_ship(f"{RESULTS}/criteria/{{ship}}_sea_states.png"),
         dsa=[f"{RESULTS}/criteria/{s}_dsa{x}" for s in dsa_ships() for x in (".nc", "_map.png", "_polar.png")],
         validation=validation_files(),
         ensembles=[f"{RESULTS}/ensemble/{k}/ensemble.nc" for k in ENSEMBLES],

@@ -10,7 +10,8 @@ import xarray as xr
 
 from stabflow.config import Ship
 from stabflow.constants import G, KNOT
-from stabflow.criteria import is_code, sgisc
+from stabflow.criteria import is_code, sea_states, sgisc
+from stabflow.criteria.dsa_run import failure_angle
 from stabflow.criteria.standards import Standards
 from stabflow.criteria.verdicts import rows_dataset
 from stabflow.geometry import Sections
@@ -105,9 +106,15 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     rows.append(sgisc.parametric_level2_row(pr, std))
     sr = sgisc.surf_riding_thresholds(ship, cfg["surf_riding"], stab.lwl)
     rows.append(sgisc.surf_riding_level2_row(sr, fn, std))
-    rows += sgisc.pending_rows(std)
+    from stabflow.config import _fill_defaults, schema
+
+    sea_cfg = _fill_defaults(schema("config")["properties"]["criteria"]["properties"]["sea_states"], cfg.get("sea_states", {}))
+    srows, seas = sea_states.sea_states(ship, sec, st, stab, wq, sea_cfg, std, r_pr[0], depth,
+                                        failure_angle(std, stab.vanishing, stab.flooding), hydro)
+    rows += srows
     ds = rows_dataset(rows, ship.name)
-    ds = ds.merge(gw).merge(pr)
+    ds = ds.merge(gw).merge(pr).merge(seas)
+    ds.attrs.update(seas.attrs)
     ds.attrs.update(pr.attrs)
     ds = ds.merge(sr)
     ds.attrs.update(sr.attrs)

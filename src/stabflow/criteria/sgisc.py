@@ -160,27 +160,6 @@ def level1_rows(gw: xr.Dataset, simple: dict, gm0: float, lwl: float, fn: float 
     return rows
 
 
-#: failure-mode levels whose physics is not in stabflow yet: rows stay, NOT EVALUATED, naming both
-PENDING = (
-    ("pure loss of stability: max(CR1, CR2)", "SGISC pure loss, level 2", f"{SG}.pure_loss_of_stability.level_2.RPL0"),
-    ("dead ship condition", "SGISC dead ship, level 1", f"{SG}.dead_ship.level_1.standard"),
-    ("dead ship condition: long-term failure index C", "SGISC dead ship, level 2", f"{SG}.dead_ship.level_2.RDS0"),
-    ("excessive acceleration", "SGISC excessive acceleration, level 1", f"{SG}.excessive_acceleration.level_1.REA1"),
-    ("excessive acceleration: long-term index C", "SGISC excessive acceleration, level 2",
-     f"{SG}.excessive_acceleration.level_2.REA2"),
-)
-
-
-def pending_rows(std: Standards) -> list[Row]:
-    """Rows of the levels whose computation stabflow does not have yet (issue 21 in progress)."""
-    out = []
-    for name, level, key in PENDING:
-        s = std.get_or_missing(key, f"{CIRC}, {level}")
-        out.append(against(name, level, math.nan, "-", s, "<=",
-                           missing=["stabflow's computation of this level (not implemented yet)"]))
-    return out
-
-
 def wave_gz_table(sec: Sections, volume: float, lcg: float, kg: float, lam: float, height: float, heel_deg,
                   n_crest: int = 24) -> np.ndarray:
     """GZ [m] on a regular wave (length ``lam``, height ``height``) at ``n_crest`` crest positions
@@ -364,7 +343,7 @@ def surf_riding_level2_row(sr: xr.Dataset, fn: float | None, std: Standards) -> 
     following waves; the circular's index (wave cases and weights) and R_SR are not sourced."""
     r = std.get(f"{SG}.surf_riding_broaching.level_2.R_SR")
     wc = std.get("sgisc.wave_data.level2_wave_scatter_table")
-    miss = [f"{r.key} ({r.source})", "the circular's surf-riding wave cases (not read)"]
+    miss = ["the circular's surf-riding wave cases (not read)"]
     if "sr_froude_critical" not in sr:
         return against("surf-riding/broaching: C (Melnikov critical Froude number)", "SGISC surf-riding, level 2",
                        math.nan, "-", r, "<=", missing=[sr.attrs["sr_not_computed"]] + miss)

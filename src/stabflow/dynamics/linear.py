@@ -9,13 +9,59 @@ equilibrium in the wave (the kernel's or the pressure-integration reference's).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from stabflow.constants import G
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics.rigid_body import coordinates_from_origin, generalized_loads, generalized_system
 from stabflow.dynamics.tables import kernel_args
+from stabflow.waves.synthesis import station_wave_table
 from stabflow.dynamics.rao import first_harmonic
+
+if TYPE_CHECKING:
+    from stabflow.geometry import Sections
+
+
+class KernelLoads:
+    """FK + HS loads of the volume-based kernel (``_fkhs``) on the ship held in the waves.
+
+    Same ``loads(t, h, phi, theta)`` interface as :class:`stabflow.dynamics.pressure.PressureModel`,
+    so :func:`stabflow.dynamics.linear.fk_excitation` takes either.
+
+    Parameters
+    ----------
+    sec : Sections
+        The ship's sections.
+    rho, xg, zg : float
+        Water density [kg/m^3] and centre of gravity (body axes) [m].
+    waves : tuple of arrays
+        (amp [m], omega [rad/s], phase [rad]) of the components.
+    heading_deg, speed : float
+        Wave heading [degree] and ship speed [m/s].
+    depth : ndarray, optional
+        Section depths for the d2phi/dzdt term (:func:`stabflow.dynamics.model.section_depths`);
+        None leaves it out (the default model).
+    """
+
+    def __init__(self, sec: Sections, rho: float, xg: float, zg: float, waves, heading_deg: float,
+                 speed: float = 0.0, depth: np.ndarray | None = None):
+        self.sec, self.rho, self.xg, self.zg = sec, rho, xg, zg
+        self.waves, self.heading, self.speed, self.depth = waves, heading_deg, speed, depth
+        b = np.radians(heading_deg)
+        self.cb, self.sb = np.cos(b), np.sin(b)
+        self.args = kernel_args(sec)
+        self._out = np.empty(6)
+        self._work = np.empty((len(sec.x), 5))
+
+    def loads(self, t: float, h: float, phi: float, theta: float) -> np.ndarray:
+        """(Fx, Fy, Fz, Mx, My, Mz) about G in earth axes [N, N m] at time ``t`` [s] for heave ``h``
+        [m], roll ``phi`` and pitch ``theta`` [rad] (absolute, as the kernel's state)."""
+        w = station_wave_table(*self.waves, self.sec.x, self.heading, self.speed, np.array([float(t)]), self.depth)
+        K._fkhs(*self.args, self.rho, G, self.xg, self.zg, h, phi, theta, self.cb, self.sb,
+              np.ascontiguousarray(w[0]), self._out, self._work)
+        return self._out.copy()
 
 
 def _rest_parameters(rho, xg, zg) -> np.ndarray:

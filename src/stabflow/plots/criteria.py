@@ -56,6 +56,33 @@ def criteria_figure(ds: xr.Dataset, path, title: str = ""):
     plt.close(fig)
 
 
+def sea_state_figure(ds: xr.Dataset, path, title: str = ""):
+    """Level-2 physics over the scatter table's sea states (Hs x Tz, states that never occur blank):
+    Grim's effective wave height, delta GM / GM on it, the dead-ship roll sigma, and the long-term
+    rate of the lateral acceleration at the crew location exceeding a level."""
+    fig, axes = plt.subplots(1, 4, figsize=(16, 3.8))
+    tz, hs = ds["tz"].values, ds["hs"].values
+    for ax, (var, label) in zip(axes[:3], (("ew_effective_height", "H_eff [m] (Grim, λ = L)"),
+                                             ("ew_delta_gm_ratio", "δGM / GM on the effective wave"),
+                                             ("ds_roll_std", "dead-ship roll σ [°] (beam seas, no way)"))):
+        m = ax.pcolormesh(tz, hs, np.ma.masked_invalid(ds[var].values), shading="nearest", cmap="viridis")
+        fig.colorbar(m, ax=ax, shrink=0.85)
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel("Tz [s]")
+        ax.set_ylabel("Hs [m]")
+    a = axes[3]
+    r = ds["ea_long_term_rate"].values
+    a.semilogy(ds["ea_level"].values, np.where(r > 0, r, np.nan), "o-")
+    a.set_xlabel("lateral acceleration level [m/s²]")
+    a.set_ylabel("exceedances per year")
+    a.set_title(f"crew location {float(ds.ea_height_above_g):.1f} m above G", fontsize=9)
+    a.grid(alpha=0.3, which="both")
+    fig.suptitle(title)
+    fig.tight_layout()
+    atomic_savefig(fig, path, dpi=110)
+    plt.close(fig)
+
+
 def dsa_figures(ds: xr.Dataset, paths: dict, name: str):
     """``paths['map']``: each (Hs, Tz) cell's contribution to the long-term rate (summed over headings
     and speeds; x marks cells whose every heading and speed was screened); ``paths['polar']``: the

@@ -317,7 +317,23 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
            "one": float(d.pr_roll_1dof.sel(pr_heading=h, pr_froude=f, pr_steepness=x)),
            "three": float(d.pr_roll_3dof.sel(pr_heading=h, pr_froude=f, pr_steepness=x))}
           for h in d.pr_heading.values for f in d.pr_froude.values for x in d.pr_steepness.values] if "pr_roll_1dof" in d else []
+    seas = None
+    if "ew_effective_height" in d:
+        occ = d.sea_probability.values > 0
+        seas = {"n": int(occ.sum()), "lam": float(d.attrs.get("ew_wave_length", np.nan)),
+                "crests": int(d.attrs.get("ew_crest_positions", 0)), "phi_w": float(d.ds_heel_wind),
+                "wind": str(d.attrs.get("ds_wind", "")), "phi_f": float(d.ds_failure_angle),
+                "governs": str(d.attrs.get("ds_failure_angle_governed_by", "")), "crew": str(d.attrs.get("ea_crew", "")),
+                "h": float(d.ea_height_above_g), "heff": float(d.ew_effective_height.max()),
+                "gm_min": float(d.ew_gm_min.min()), "p_gm": float(d.ew_probability_gm_negative),
+                "dgm": float(d.ew_delta_gm_ratio.max()), "p_pr": float(d.ew_probability_delta_gm_above_rpr),
+                "vanish": float(d.ew_heel_vanishing.min()), "gzmax": float(d.ew_gz_max.min()),
+                "roll": float(d.ds_roll_std.max()), "rate": float(d.ds_long_term_rate), "tr": float(d.ea_roll_period),
+                "kacc": float(d.ea_acceleration_per_roll),
+                "acc": [(float(a), float(r)) for a, r in zip(d.ea_level.values, d.ea_long_term_rate.values)],
+                "figure": _copy(results / "criteria" / f"{name}_sea_states.png", figdir)}
     return _render("criteria.md.j2", name=name, rows=rows, counts=counts, overrides=d.attrs.get("standards_overridden", "none"),
+                   seas=seas,
                    figure=_copy(results / "criteria" / f"{name}_criteria.png", figdir), wc=wc,
                    block=float(d.block_coefficient), deck_edge=float(d.deck_edge_immersion),
                    flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1, dsa=dsa,

@@ -8,6 +8,9 @@ exact integration, and the direct stability assessment's aggregation against Ric
 | GM on a wave lambda = L, crest amidships (box) | GM0 + a^2 / (4 T) (wall-sided, closed form) | independent |
 | level-1 GMmin by waterplane inertia (box) | d_L / 2 + B^2 / (12 d) - KG (closed form) | independent |
 | DSA long-term rate of linear 1-DOF roll | Rice's formula summed over the scatter table (exact) | independent |
+| Grim's effective-wave transfer function | least-squares projection of random sea profiles over the ship's length (direct quadrature) | independent |
+| beam seas without way, small waves: roll sigma of the linear model | the 3-DOF time domain in the same sea (ensemble engine) | consistency |
+| beam seas without way, roll sigma 5 deg: stochastic linearisation of quadratic damping | the 3-DOF time domain | consistency |
 """
 
 from __future__ import annotations
@@ -27,7 +30,23 @@ TOL_WEATHER = 1e-3  # relative (area a spans the roll-back to windward; measured
 TOL_WAVE_GM = 1e-6  # m (measured: round-off)
 
 
+#: Grim's effective wave: relative tolerance of the projected sigma (sampling error about 0.8 %)
+TOL_GRIM = 0.03
+GRIM_SAMPLES, GRIM_COMPONENTS = 4000, 200
+#: beam seas: roll sigma of the small-wave and the large-roll cases [degree], their tolerances
+#: (relative), records x duration [s] and RK4 step [s] of the time domain
+BEAM_SMALL_DEG, BEAM_LARGE_DEG = 0.5, 5.0
+TOL_BEAM_LINEAR, TOL_BEAM_STOCHASTIC = 0.03, 0.10
+BEAM_RECORDS, BEAM_DURATION, BEAM_DT = 50, 3600.0, 0.1
+
+
 def criteria_checks(ship: Ship, crit: xr.Dataset) -> list[Check]:
+    """Rows for one ship: closed forms for a box hull (SKIPPED with the reason for other hulls) and
+    the beam-sea model against the time domain."""
+    return box_checks(ship, crit) + beam_sea_checks(ship)
+
+
+def box_checks(ship: Ship, crit: xr.Dataset) -> list[Check]:
     """Rows for one ship: closed forms for a box hull, SKIPPED (with the reason) for other hulls."""
     h = ship.hull
     if h["source"] != "box":
@@ -111,3 +130,83 @@ def dsa_checks(ver: xr.Dataset) -> list[Check]:
                   lower=float(ver["rate_lo_dispersed"]) / est, upper=float(ver["rate_hi_dispersed"]) / est),
             Check("DSA long-term rate of linear 1-DOF roll: exact / estimate, in the Poisson (Fay-Feuer) interval", ex / est,
                   np.nan, "1", ref, kind="independent", lower=float(ver["rate_lo"]) / est, upper=float(ver["rate_hi"]) / est)]
+
+
+def grim_check(length: float = 100.0, hs: float = 4.0, tz: float = 8.0, seed: int = 21) -> Check:
+    """Grim's effective wave: sigma of the least-squares amplitude of random sea profiles over the
+    ship's length (direct quadrature, :func:`stabflow.criteria.effective_wave.projection`) against
+    sqrt(int S F^2) with the closed-form transfer function. ``GRIM_SAMPLES`` independent long-crested
+    profiles of ``GRIM_COMPONENTS`` random-phase components (Bretschneider in Hs [m], Tz [s])."""
+    from stabflow.criteria.beam_seas import sea_spectrum
+    from stabflow.criteria.effective_wave import effective_wave_std, projection
+    from stabflow.constants import G
+
+    def value():
+        w = np.linspace(0.2, 3.0, 20001)
+        S = sea_spectrum(w, hs, tz)
+        ref = effective_wave_std(w, S, length)
+        edges = np.linspace(0.2, 3.0, GRIM_COMPONENTS + 1)
+        wc = 0.5 * (edges[1:] + edges[:-1])
+        amp = np.sqrt(2 * sea_spectrum(wc, hs, tz) * np.diff(edges))
+        x = np.linspace(-length / 2, length / 2, 401)
+        rng = np.random.default_rng(seed)
+        ph = rng.uniform(-np.pi, np.pi, (GRIM_SAMPLES, GRIM_COMPONENTS))
+        k = wc**2 / G
+        # eta(x) of every sample: sum_c a_c cos(k_c x + phase) = (a cos ph) cos(k x) - (a sin ph) sin(k x)
+        kx = k[:, None] * x[None, :]
+        eta = (amp * np.cos(ph)) @ np.cos(kx) - (amp * np.sin(ph)) @ np.sin(kx)
+        # the discretised sea's own exact sigma is sqrt(sum a^2 F^2 / 2); the continuous one is ref
+        return float(np.std(projection(x, eta, length))) / ref - 1
+
+    return run_check(value, f"Grim's effective wave: sigma by projection of {GRIM_SAMPLES} random profiles over "
+                     f"L = {length:g} m (Hs {hs:g} m, Tz {tz:g} s) / sqrt(int S F^2 dw) - 1", "1",
+                     "least-squares fit (2/L) int eta cos(2 pi x/L) dx of sampled sea profiles, Simpson quadrature",
+                     tolerance=TOL_GRIM)
+
+
+def beam_sea_checks(ship: Ship) -> list[Check]:
+    """The linear beam-sea model (dead ship, lateral acceleration) against the 3-DOF time domain in
+    the same irregular beam sea without way, at the roll resonance (Tm = natural roll period): in
+    small waves (roll sigma ``BEAM_SMALL_DEG``: the linearisation of the same equations) and at roll
+    sigma ``BEAM_LARGE_DEG`` (the stochastic linearisation of quadratic damping and the neglected
+    nonlinearity). Ships whose coefficients need the Capytaine file are SKIPPED (the validation rule
+    does not run Capytaine)."""
+    from stabflow.config import _fill_defaults, schema
+    from stabflow.criteria import dsa_run
+    from stabflow.criteria.beam_seas import beam_sea_model, linearised_response, moments, sea_spectrum
+    from stabflow.criteria.dsa import tz_over_tm
+    from stabflow.statistics.ensemble import build_model
+
+    ref = "3-DOF time domain, beam seas without way (ensemble engine)"
+    names = [f"beam seas without way: time-domain / linear-model roll sigma - 1, {s:g} deg" for s in
+             (BEAM_SMALL_DEG, BEAM_LARGE_DEG)]
+    if ship.data["dynamics"].get("hydro") == "capytaine":
+        return [Check.not_applicable(n, "the ship's coefficients come from Capytaine (not run by this check)", "1", ref,
+                                     "consistency") for n in names]
+    cfg = _fill_defaults(schema("config")["properties"]["dsa"], {})
+    cfg = dict(cfg, dt=BEAM_DT, stations=21)
+    c = dsa_run.condition(cfg, ship.name, 1.0, 8.0, 90.0, 0.0, 1, 60.0, 0, 90.0, 1.0)
+    model = build_model(ship, c, None)
+    bsm = beam_sea_model(model)
+    tz = model.roll_period * tz_over_tm()
+    S1 = sea_spectrum(bsm.omega, 1.0, tz)
+    out = []
+    for name, target, tol in zip(names, (BEAM_SMALL_DEG, BEAM_LARGE_DEG), (TOL_BEAM_LINEAR, TOL_BEAM_STOCHASTIC)):
+        def value(target=target):
+            # Hs giving the target sigma (stochastic linearisation: sigma is not linear in Hs; bisection)
+            def sigma(hs):
+                X, _ = linearised_response(bsm, S1 * hs**2)
+                return math.degrees(math.sqrt(moments(bsm.omega, np.abs(X) ** 2 * S1 * hs**2)[0]))
+
+            from scipy.optimize import brentq
+
+            hs = brentq(lambda h: sigma(h) - target, 1e-3, 30.0, xtol=1e-4)
+            cond = dsa_run.condition(cfg, ship.name, hs, tz, 90.0, 0.0, BEAM_RECORDS, BEAM_DURATION, 11, 90.0, 1.0)
+            ens = dsa_run.run_cell(model, cond)
+            if bool(ens["capsized"].values.any()):
+                raise ValueError("a time-domain record capsized")
+            return float(ens["roll_std"]) / sigma(hs) - 1
+
+        out.append(run_check(value, name + f" (Tz {tz:.1f} s, {BEAM_RECORDS} x {BEAM_DURATION / 3600:g} h)", "1", ref,
+                             kind="consistency", tolerance=tol))
+    return out

@@ -1,0 +1,217 @@
+"""The ship without way in beam seas, by the linear frequency-domain solution of the time domain's own
+equations: the physics of the second-generation dead-ship (level 2) and excessive-acceleration
+(levels 1-2) checks, sea state by sea state of a scatter table.
+
+Model
+    The 3-DOF equations of the ensembles (heave of G, roll, pitch) linearised about the calm-water
+    equilibrium, [-w^2 (M + A) + i w B + C] X = F, at zero speed in beam waves (heading 90 degree):
+    F the first harmonic of the volume-based Froude-Krylov loads on the ship held at equilibrium
+    (:func:`stabflow.dynamics.linear.fk_excitation`), C the restoring matrix
+    (:func:`stabflow.dynamics.linear.stiffness_matrix`). The excitation is computed on a coarse
+    frequency grid and interpolated (cubic spline of its real and imaginary parts) to a fine one that
+    resolves the roll resonance; C and M do not depend on frequency.
+
+Quadratic roll damping
+    By stochastic (statistical) linearisation: for a zero-mean Gaussian roll velocity of standard
+    deviation s, the linear coefficient that best replaces B44q p|p| in the mean-square sense is
+    E[p^2 |p|] / E[p^2] B44q = sqrt(8 / pi) s B44q (E|p|^3 = 2 sqrt(2 / pi) s^3 for a Gaussian), so
+    B44_eq = B44 + sqrt(8 / pi) s B44q, solved by fixed-point iteration with the response. An
+    amplitude-dependent B44q (Ikeda's) is read at the amplitude sqrt(2) sigma_roll (a harmonic roll
+    of the same variance).
+
+Steady wind (dead ship)
+    The ship rolls about the heel phi_w of the steady wind lever of the IS Code weather criterion
+    (its phi0, 2.3), where the restoring is W GZ'(phi_w) instead of W GM; with no windage in the ship
+    config the wind heel is left out (phi_w = 0) and the results say so. Roll is Gaussian about phi_w;
+    failure is an excursion beyond the failure angle phi_f on either side, at the rate (Rice)
+
+        nu = nu0 [exp(-(phi_f - phi_w)^2 / 2 m0) + exp(-(phi_f + phi_w)^2 / 2 m0)],  nu0 = sqrt(m2 / m0) / 2 pi.
+
+Lateral acceleration
+    At a height h above G, in body axes, a_y = g sin(phi) - h phi'' (gravity's component along the
+    heeled deck plus the point's acceleration about the roll axis through G; sway is not a degree of
+    freedom of the model), in the frequency domain (g + w^2 h) X_roll. Its exceedance rate of a level
+    a on either side is 2 nu+(a) by Rice's formula.
+
+Bands
+    Each sea state's spectrum is cut where it falls below 1e-3 of its peak, as the ensembles' seaways
+    (paper 004 eqs 23, 28): the frequency-domain results describe the sea the time domain simulates.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import xarray as xr
+from scipy.interpolate import CubicSpline
+from scipy.integrate import simpson
+
+from stabflow.constants import G
+
+#: sqrt(8 / pi): the stochastic linearisation factor of p |p| for a Gaussian p
+STOCHASTIC = math.sqrt(8.0 / math.pi)
+#: wave steepness H / lambda of the regular waves whose FK first harmonic gives the excitation
+EXCITATION_STEEPNESS = 1.0 / 1000.0
+
+
+@dataclasses.dataclass
+class BeamSeaModel:
+    """Linear beam-sea response of one ship at zero speed on a fine frequency grid.
+
+    Attributes
+    ----------
+    omega : fine frequency grid [rad/s].
+    force : complex generalized FK forces per unit wave amplitude (len(omega), 3) [N/m, N m/m, N m/m].
+    stiffness : 3 x 3 restoring matrix [N/m, N/rad, N m/m, N m/rad].
+    mass : diagonal generalized mass + added mass (3,) [kg, kg m^2, kg m^2].
+    damping : linear damping (3,) [N s/m, N m s/rad, N m s/rad].
+    b44q : quadratic roll damping on the kernels' amplitude grid [N m s^2/rad^2].
+    amplitudes : that grid [rad].
+    roll_period : undamped natural roll period [s].
+    """
+
+    omega: np.ndarray
+    force: np.ndarray
+    stiffness: np.ndarray
+    mass: np.ndarray
+    damping: np.ndarray
+    b44q: np.ndarray
+    amplitudes: np.ndarray
+    roll_period: float
+
+    def rao(self, b44: float | None = None, c44: float | None = None) -> np.ndarray:
+        """Complex (heave, roll, pitch) per unit wave amplitude (len(omega), 3) with the linear roll
+        damping ``b44`` [N m s/rad] (default: the model's) and roll restoring ``c44`` [N m/rad]
+        (default: the upright C44)."""
+        w = self.omega[:, None, None]
+        B = np.diag(self.damping).astype(complex)
+        if b44 is not None:
+            B[1, 1] = b44
+        C = self.stiffness.astype(complex).copy()
+        if c44 is not None:
+            C[1, 1] = c44
+        Z = -(w**2) * np.diag(self.mass) + 1j * w * B + C
+        return np.linalg.solve(Z, self.force[..., None])[..., 0]
+
+    def b44q_at(self, amplitude: float) -> float:
+        """Quadratic roll damping [N m s^2/rad^2] at the roll amplitude ``amplitude`` [rad]."""
+        return float(np.interp(amplitude, self.amplitudes, self.b44q))
+
+
+def beam_sea_model(model, w_min: float = 0.05, w_max: float = 4.0, n_coarse: int = 80,
+                   dw: float = 0.0005) -> BeamSeaModel:
+    """The linear beam-sea model of an ensemble engine model (:func:`stabflow.statistics.ensemble.build_model`
+    at zero speed): the FK excitation at ``n_coarse`` frequencies on [w_min, w_max] [rad/s],
+    interpolated to a grid of step ``dw`` [rad/s]."""
+    from stabflow.dynamics import _kernels as K
+    from stabflow.dynamics.linear import KernelLoads, fk_excitation, stiffness_matrix
+    from stabflow.hydrostatics.statics import equilibrium
+    from stabflow.waves.synthesis import regular
+
+    st, sec, co = model.st, model.sec, model.co
+    V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
+    h0, th0, _ = equilibrium(sec, V, lcg, kg)
+    C = stiffness_matrix(sec, model.ship.rho, lcg, kg, h0, th0)
+    coarse = np.linspace(w_min, w_max, n_coarse)
+    F = np.empty((n_coarse, 3), complex)
+    for i, w in enumerate(coarse):
+        lam = 2 * math.pi * G / w**2
+        amp = 0.5 * EXCITATION_STEEPNESS * lam
+        loads = KernelLoads(sec, model.ship.rho, lcg, kg, regular(2 * amp, lam), 90.0, 0.0, model.depth)
+        F[i] = fk_excitation(loads, h0, th0, w) / amp
+    fine = np.arange(w_min, w_max + 0.5 * dw, dw)
+    force = CubicSpline(coarse, F.real, axis=0)(fine) + 1j * CubicSpline(coarse, F.imag, axis=0)(fine)
+    return BeamSeaModel(fine, force, C, np.array([co.mass + co.a33, co.i44 + co.a44, co.i55 + co.a55]),
+                        np.array([co.b33, co.b44, co.b55]), co.b44q_profile(),
+                        np.radians(np.linspace(0.0, 90.0, K.N_AMPLITUDES)), co.natural_period("roll"))
+
+
+def sea_spectrum(omega, hs: float, tz: float) -> np.ndarray:
+    """Bretschneider spectrum in (Hs [m], Tz [s]) on ``omega`` [rad/s], zero outside the band where it
+    is above 1e-3 of its peak (the ensembles' band) [m^2 s]."""
+    from stabflow.criteria.dsa import bretschneider_tz, tz_over_tm
+    from stabflow.waves.spectra import cutoff_frequencies
+
+    lo, hi = cutoff_frequencies(lambda w: bretschneider_tz(w, hs, tz), 2 * math.pi * tz_over_tm() / tz)
+    w = np.asarray(omega, float)
+    return np.where((w >= lo) & (w <= hi), bretschneider_tz(w, hs, tz), 0.0)
+
+
+def moments(omega, spectrum) -> tuple[float, float]:
+    """(m0, m2) of a one-sided spectrum on ``omega`` (Simpson's rule)."""
+    return float(simpson(spectrum, x=omega)), float(simpson(np.asarray(omega) ** 2 * spectrum, x=omega))
+
+
+def rice_rate(m0: float, m2: float, level: float) -> float:
+    """Up-crossing rate [1/s] of ``level`` by a zero-mean Gaussian process with moments m0, m2 (0 for a
+    process with no variance)."""
+    if m0 <= 0:
+        return 0.0
+    return math.sqrt(m2 / m0) / (2 * math.pi) * math.exp(-level**2 / (2 * m0))
+
+
+def linearised_response(bsm: BeamSeaModel, S: np.ndarray, c44: float | None = None, tol: float = 1e-6,
+                        max_iter: int = 100) -> tuple[np.ndarray, float]:
+    """Roll RAO per unit wave amplitude (complex, on ``bsm.omega``) in the sea of spectrum ``S``
+    [m^2 s] with the stochastically linearised roll damping, and that damping B44_eq [N m s/rad]."""
+    b = bsm.damping[1]
+    w = bsm.omega
+    for _ in range(max_iter):
+        X = bsm.rao(b, c44)[:, 1]
+        m0, m2 = moments(w, np.abs(X) ** 2 * S)
+        new = bsm.damping[1] + STOCHASTIC * math.sqrt(m2) * bsm.b44q_at(math.sqrt(2 * m0))
+        if abs(new - b) <= tol * new:
+            b = new
+            break
+        b = new
+    else:
+        raise RuntimeError("stochastic linearisation of the roll damping did not converge")
+    return bsm.rao(b, c44)[:, 1], b
+
+
+def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_deg: float, c44_heeled: float,
+                   crew_height: float, levels) -> xr.Dataset:
+    """Dead-ship roll and lateral acceleration in every sea state (hs, tz) of the scatter table ``p``.
+
+    Parameters
+    ----------
+    phi_f_deg : failure angle [degree]; phi_w_deg : heel under the steady wind [degree] (0: none).
+    c44_heeled : roll restoring W GZ'(phi_w) [N m/rad] about the wind heel.
+    crew_height : height of the crew location above G [m].
+    levels : lateral-acceleration levels [m/s^2] of the exceedance rates.
+
+    Sea states whose probability is not positive (or NaN) are skipped (NaN).
+
+    Returns
+    -------
+    Dataset over (hs, tz): ``ds_roll_std`` [degree], ``ds_roll_period`` [s] (mean zero-crossing period
+    2 pi sqrt(m0 / m2)), ``ds_b44_eq`` [N m s/rad], ``ds_failure_rate`` [1/s]; ``ea_acceleration_std``
+    [m/s^2]; and over (ea_level, hs, tz) ``ea_exceedance_rate`` [1/s] of |a_y| > level.
+    """
+    w = bsm.omega
+    lv = np.asarray(levels, float)
+    shape = p.shape
+    sd, tzr, beq, rate, asd = (np.full(shape, np.nan) for _ in range(5))
+    exc = np.full((len(lv),) + shape, np.nan)
+    a_lee = math.radians(phi_f_deg - phi_w_deg)
+    a_wind = math.radians(phi_f_deg + phi_w_deg)
+    for i, hs in enumerate(p.hs.values):
+        for j, tz in enumerate(p.tz.values):
+            if not p.values[i, j] > 0:
+                continue
+            S = sea_spectrum(w, float(hs), float(tz))
+            X, beq[i, j] = linearised_response(bsm, S, c44_heeled)
+            m0, m2 = moments(w, np.abs(X) ** 2 * S)
+            sd[i, j], tzr[i, j] = math.degrees(math.sqrt(m0)), 2 * math.pi * math.sqrt(m0 / m2)
+            rate[i, j] = (math.inf if a_lee <= 0 else rice_rate(m0, m2, a_lee) + rice_rate(m0, m2, a_wind))
+            A = np.abs((G + w**2 * crew_height) * X) ** 2 * S
+            a0, a2 = moments(w, A)
+            asd[i, j] = math.sqrt(a0)
+            exc[:, i, j] = [2 * rice_rate(a0, a2, a) for a in lv]
+    dims = ("hs", "tz")
+    return xr.Dataset({"ds_roll_std": (dims, sd), "ds_roll_period": (dims, tzr), "ds_b44_eq": (dims, beq),
+                       "ds_failure_rate": (dims, rate), "ea_acceleration_std": (dims, asd),
+                       "ea_exceedance_rate": (("ea_level",) + dims, exc)},
+                      coords={"hs": p.hs, "tz": p.tz, "ea_level": lv})
