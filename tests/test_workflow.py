@@ -114,7 +114,9 @@ def test_criteria_results_and_chapters(pipeline):
         # closed forms of the box and the linear beam-sea model in small waves pass; at 5 deg roll
         # the barge's time domain rolls about a third more than the linear model: a recorded FAIL
         beam = [k for k in status if k.startswith("beam seas without way")]
-        assert len(beam) == 2 and status[beam[0]] == "PASS" and status[beam[1]] in ("PASS", "FAIL")
+        assert len(beam) == 2 and status[beam[0]] == "PASS" and status[beam[1]] == "FAIL"
+        value = dict(zip((str(n) for n in ds.name.values), ds.value.values.astype(float)))
+        assert 0.25 < value[beam[1]] < 0.45  # the README's +33 % at roll sigma 5 deg
         assert {v for k, v in status.items() if k not in beam} == {"PASS"} and len(status) >= 10
 
 

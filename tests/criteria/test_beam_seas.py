@@ -11,6 +11,7 @@ from stabflow.config import load_ship
 from stabflow.constants import G
 from stabflow.criteria import beam_seas as bs
 from stabflow.criteria import dsa_run
+from stabflow.criteria.dsa import band_spectrum, moments, rice_rate
 from stabflow.config import _fill_defaults, schema
 from stabflow.statistics.ensemble import build_model
 from tests.conftest import SHIPS
@@ -50,9 +51,9 @@ def test_stochastic_linearisation_fixed_point(trawler):
     """B44_eq = B44 + sqrt(8/pi) sigma_rate B44q(sqrt(2) sigma) at the response it gives; without
     quadratic damping the linear coefficient itself."""
     _, _, b = trawler
-    S = bs.sea_spectrum(b.omega, 2.0, 5.5)
+    S = band_spectrum(b.omega, 2.0, 5.5)
     X, beq = bs.linearised_response(b, S)
-    m0, m2 = bs.moments(b.omega, np.abs(X) ** 2 * S)
+    m0, m2 = moments(b.omega, np.abs(X) ** 2 * S)
     assert beq == pytest.approx(b.damping[1] + bs.STOCHASTIC * math.sqrt(m2) * b.b44q_at(math.sqrt(2 * m0)), rel=1e-5)
     assert beq > b.damping[1]
     lin = bs.BeamSeaModel(**{**b.__dict__, "b44q": np.zeros_like(b.b44q)})
@@ -60,21 +61,45 @@ def test_stochastic_linearisation_fixed_point(trawler):
 
 
 def test_cells_rates_and_acceleration(trawler):
-    """Per sea state: without wind the failure rate is twice Rice's rate at the failure angle; at
-    the height of G the lateral acceleration is g times roll; zero-probability states are skipped."""
+    """Per sea state: without wind the failure rate is twice Rice's rate at the failure angle; the
+    lateral acceleration at h above G is (g + w^2 h) times roll, its exceedance twice Rice's rate;
+    a steady heel gives Rice's rates at phi_f -+ phi_w with the heeled restoring (the acceleration
+    stays the upright one); a heel at the failure angle or no equilibrium (infinite heel) gives an
+    infinite rate; zero-probability states are skipped."""
     _, _, b = trawler
     p = xr.DataArray([[0.01, 0.0]], dims=("hs", "tz"), coords={"hs": [2.5], "tz": [5.5, 6.5]})
-    ds = bs.beam_sea_cells(b, p, 30.0, 0.0, b.stiffness[1, 1], 0.0, [1.0, 2.0])
-    S = bs.sea_spectrum(b.omega, 2.5, 5.5)
+    h = 3.0
+    ds = bs.beam_sea_cells(b, p, 30.0, 0.0, None, h, [1.0, 2.0])
+    S = band_spectrum(b.omega, 2.5, 5.5)
     X, _ = bs.linearised_response(b, S)
-    m0, m2 = bs.moments(b.omega, np.abs(X) ** 2 * S)
+    m0, m2 = moments(b.omega, np.abs(X) ** 2 * S)
     assert float(ds.ds_roll_std[0, 0]) == pytest.approx(math.degrees(math.sqrt(m0)))
-    assert float(ds.ds_failure_rate[0, 0]) == pytest.approx(2 * bs.rice_rate(m0, m2, math.radians(30.0)))
-    assert float(ds.ea_acceleration_std[0, 0]) == pytest.approx(G * math.sqrt(m0), rel=1e-9)
+    assert float(ds.ds_failure_rate[0, 0]) == pytest.approx(2 * rice_rate(m0, m2, math.radians(30.0)))
+    A = np.abs((G + b.omega**2 * h) * X) ** 2 * S
+    a0, a2 = moments(b.omega, A)
+    assert float(ds.ea_acceleration_std[0, 0]) == pytest.approx(math.sqrt(a0), rel=1e-12)
+    assert float(ds.ea_exceedance_rate[1, 0, 0]) == pytest.approx(2 * rice_rate(a0, a2, 2.0), rel=1e-12)
+    # the (g + w^2 h) factor: above G the acceleration exceeds g times roll
+    assert float(ds.ea_acceleration_std[0, 0]) > 1.05 * G * math.sqrt(m0)
     assert np.isnan(float(ds.ds_roll_std[0, 1]))
-    # a steady heel moves the failure closer on the lee side: the rate rises
-    heeled = bs.beam_sea_cells(b, p, 30.0, 5.0, b.stiffness[1, 1], 0.0, [1.0])
-    assert float(heeled.ds_failure_rate[0, 0]) > float(ds.ds_failure_rate[0, 0])
+    c44 = 0.8 * b.stiffness[1, 1]
+    heeled = bs.beam_sea_cells(b, p, 30.0, 5.0, c44, h, [1.0])
+    Xh, _ = bs.linearised_response(b, S, c44)
+    n0, n2 = moments(b.omega, np.abs(Xh) ** 2 * S)
+    assert float(heeled.ds_failure_rate[0, 0]) == pytest.approx(rice_rate(n0, n2, math.radians(25.0))
+                                                                + rice_rate(n0, n2, math.radians(35.0)), rel=1e-12)
+    assert float(heeled.ea_acceleration_std[0, 0]) == float(ds.ea_acceleration_std[0, 0])
+    for phi_w in (30.0, math.inf):
+        assert math.isinf(float(bs.beam_sea_cells(b, p, 30.0, phi_w, None, h, [1.0]).ds_failure_rate[0, 0]))
+
+
+def test_band_beyond_the_grid_is_an_error(trawler):
+    """A sea state whose spectrum reaches beyond the model's frequency grid raises, naming it."""
+    _, _, b = trawler
+    short = bs.BeamSeaModel(**{**b.__dict__, "omega": b.omega[b.omega < 2.0], "force": b.force[b.omega < 2.0]})
+    p = xr.DataArray([[0.01]], dims=("hs", "tz"), coords={"hs": [1.5], "tz": [4.5]})
+    with pytest.raises(ValueError, match="Tz 4.5 s"):
+        bs.beam_sea_cells(short, p, 30.0, 0.0, None, 0.0, [1.0])
 
 
 def test_small_waves_against_time_domain():

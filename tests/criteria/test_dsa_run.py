@@ -115,3 +115,17 @@ def test_cell_seeds_depend_on_the_cell_only():
     assert dsa_run.cell_seed(1, 2, 3, 4, 5, 0) == dsa_run.cell_seed(1, 2, 3, 4, 5, 0)
     assert len({dsa_run.cell_seed(0, i, j, 0, 0, s) for i in range(5) for j in range(5) for s in (0, 1)}) == 50
     assert dsa_run.cell_seed(0, 1, 0, 0, 0, 0) != dsa_run.cell_seed(1000, 0, 0, 0, 0, 0)
+
+
+def test_acceleration_limit_never_gives_a_roll_only_verdict(tmp_path):
+    """Without a sourced lateral-acceleration limit the DSA row names it missing; with one (an
+    override) it still stays NOT EVALUATED, saying the engine does not count those failures yet."""
+    from stabflow.criteria.dsa_run import ACC_KEY, acceleration_missing
+    from stabflow.criteria.standards import Standards
+
+    assert acceleration_missing(Standards()) == [f"{ACC_KEY} (lateral acceleration failure not assessed)"]
+    p = tmp_path / "over.yaml"
+    p.write_text("criteria_overrides:\n"
+                 f"  - {{key: {ACC_KEY}, value: 9.81, source: 'test document 3.1'}}\n")
+    miss = acceleration_missing(Standards(p))
+    assert len(miss) == 1 and "9.81 m/s2" in miss[0] and "does not count them yet" in miss[0]

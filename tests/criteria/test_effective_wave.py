@@ -44,6 +44,10 @@ def test_vanishing_angle():
     loll = np.sin(np.radians(3 * h)) * (h - 10.0)
     assert ew.vanishing_angle(h, loll) == pytest.approx(60.0, abs=0.05)
     assert ew.vanishing_angle(h, -np.abs(np.sin(np.radians(h)))) == 0.0
+    # two humps: the first positive stretch ends at 30 deg; the second hump does not count
+    humps = np.sin(np.radians(6 * h)) + 0.2
+    first = float((180.0 - np.degrees(np.arcsin(-0.2))) / 6)  # sin(6 h) = -0.2 just past 30 deg
+    assert ew.vanishing_angle(h, humps) == pytest.approx(first, abs=0.05)
     # a curve ended by a failed equilibrium (NaN) ends there
     g = np.sin(np.radians(h))
     g[50:] = np.nan

@@ -15,27 +15,34 @@ Quadratic roll damping
     By stochastic (statistical) linearisation: for a zero-mean Gaussian roll velocity of standard
     deviation s, the linear coefficient that best replaces B44q p|p| in the mean-square sense is
     E[p^2 |p|] / E[p^2] B44q = sqrt(8 / pi) s B44q (E|p|^3 = 2 sqrt(2 / pi) s^3 for a Gaussian), so
-    B44_eq = B44 + sqrt(8 / pi) s B44q, solved by fixed-point iteration with the response. An
-    amplitude-dependent B44q (Ikeda's) is read at the amplitude sqrt(2) sigma_roll (a harmonic roll
-    of the same variance).
+    B44_eq = B44 + sqrt(8 / pi) s B44q, solved by (relaxed) fixed-point iteration with the response.
+
+    The amplitude-dependent B44q of Ikeda's components is read at sqrt(2) sigma_roll, the amplitude of
+    a harmonic roll of the same variance (an approximation: the time domain reads it at the running
+    peak amplitude, which is Rayleigh distributed).
 
 Steady wind (dead ship)
     The ship rolls about the heel phi_w of the steady wind lever of the IS Code weather criterion
     (its phi0, 2.3), where the restoring is W GZ'(phi_w) instead of W GM; with no windage in the ship
-    config the wind heel is left out (phi_w = 0) and the results say so. Roll is Gaussian about phi_w;
-    failure is an excursion beyond the failure angle phi_f on either side, at the rate (Rice)
+    config the wind heel is left out (phi_w = 0) and the results say so; a wind lever above GZmax
+    (no equilibrium, phi0 infinite) or a heel beyond the failure angle makes the rate infinite. Roll is
+    Gaussian about phi_w; failure is an excursion beyond the failure angle phi_f on either side, at
+    the rate (Rice)
 
         nu = nu0 [exp(-(phi_f - phi_w)^2 / 2 m0) + exp(-(phi_f + phi_w)^2 / 2 m0)],  nu0 = sqrt(m2 / m0) / 2 pi.
 
 Lateral acceleration
     At a height h above G, in body axes, a_y = g sin(phi) - h phi'' (gravity's component along the
     heeled deck plus the point's acceleration about the roll axis through G; sway is not a degree of
-    freedom of the model), in the frequency domain (g + w^2 h) X_roll. Its exceedance rate of a level
-    a on either side is 2 nu+(a) by Rice's formula.
+    freedom of the model), in the frequency domain (g + w^2 h) X_roll, for the upright ship without
+    wind (zero mean). Its exceedance rate of a level a on either side is 2 nu+(a) by Rice's formula.
 
-Bands
-    Each sea state's spectrum is cut where it falls below 1e-3 of its peak, as the ensembles' seaways
-    (paper 004 eqs 23, 28): the frequency-domain results describe the sea the time domain simulates.
+Waves and bands
+    Deep water (the wave length of a frequency is 2 pi g / w^2). Each sea state's spectrum is cut
+    where it falls below 1e-3 of its peak, as the ensembles' seaways (paper 004 eqs 23, 28;
+    :func:`stabflow.criteria.dsa.band_spectrum`): the frequency-domain results describe the sea the
+    time domain simulates. A sea state whose band reaches beyond the model's frequency grid is an
+    error, never silently cut.
 """
 
 from __future__ import annotations
@@ -46,9 +53,9 @@ import math
 import numpy as np
 import xarray as xr
 from scipy.interpolate import CubicSpline
-from scipy.integrate import simpson
 
 from stabflow.constants import G
+from stabflow.criteria.dsa import band_spectrum, moments, rice_rate, spectrum_band
 
 #: sqrt(8 / pi): the stochastic linearisation factor of p |p| for a Gaussian p
 STOCHASTIC = math.sqrt(8.0 / math.pi)
@@ -100,7 +107,7 @@ class BeamSeaModel:
         return float(np.interp(amplitude, self.amplitudes, self.b44q))
 
 
-def beam_sea_model(model, w_min: float = 0.05, w_max: float = 4.0, n_coarse: int = 80,
+def beam_sea_model(model, w_min: float = 0.05, w_max: float = 7.0, n_coarse: int = 140,
                    dw: float = 0.0005) -> BeamSeaModel:
     """The linear beam-sea model of an ensemble engine model (:func:`stabflow.statistics.ensemble.build_model`
     at zero speed): the FK excitation at ``n_coarse`` frequencies on [w_min, w_max] [rad/s],
@@ -128,34 +135,11 @@ def beam_sea_model(model, w_min: float = 0.05, w_max: float = 4.0, n_coarse: int
                         np.radians(np.linspace(0.0, 90.0, K.N_AMPLITUDES)), co.natural_period("roll"))
 
 
-def sea_spectrum(omega, hs: float, tz: float) -> np.ndarray:
-    """Bretschneider spectrum in (Hs [m], Tz [s]) on ``omega`` [rad/s], zero outside the band where it
-    is above 1e-3 of its peak (the ensembles' band) [m^2 s]."""
-    from stabflow.criteria.dsa import bretschneider_tz, tz_over_tm
-    from stabflow.waves.spectra import cutoff_frequencies
-
-    lo, hi = cutoff_frequencies(lambda w: bretschneider_tz(w, hs, tz), 2 * math.pi * tz_over_tm() / tz)
-    w = np.asarray(omega, float)
-    return np.where((w >= lo) & (w <= hi), bretschneider_tz(w, hs, tz), 0.0)
-
-
-def moments(omega, spectrum) -> tuple[float, float]:
-    """(m0, m2) of a one-sided spectrum on ``omega`` (Simpson's rule)."""
-    return float(simpson(spectrum, x=omega)), float(simpson(np.asarray(omega) ** 2 * spectrum, x=omega))
-
-
-def rice_rate(m0: float, m2: float, level: float) -> float:
-    """Up-crossing rate [1/s] of ``level`` by a zero-mean Gaussian process with moments m0, m2 (0 for a
-    process with no variance)."""
-    if m0 <= 0:
-        return 0.0
-    return math.sqrt(m2 / m0) / (2 * math.pi) * math.exp(-level**2 / (2 * m0))
-
-
 def linearised_response(bsm: BeamSeaModel, S: np.ndarray, c44: float | None = None, tol: float = 1e-6,
-                        max_iter: int = 100) -> tuple[np.ndarray, float]:
+                        max_iter: int = 200) -> tuple[np.ndarray | None, float]:
     """Roll RAO per unit wave amplitude (complex, on ``bsm.omega``) in the sea of spectrum ``S``
-    [m^2 s] with the stochastically linearised roll damping, and that damping B44_eq [N m s/rad]."""
+    [m^2 s] with the stochastically linearised roll damping, and that damping B44_eq [N m s/rad];
+    (None, NaN) when the iteration (relaxed by 1/2) does not converge."""
     b = bsm.damping[1]
     w = bsm.omega
     for _ in range(max_iter):
@@ -163,22 +147,20 @@ def linearised_response(bsm: BeamSeaModel, S: np.ndarray, c44: float | None = No
         m0, m2 = moments(w, np.abs(X) ** 2 * S)
         new = bsm.damping[1] + STOCHASTIC * math.sqrt(m2) * bsm.b44q_at(math.sqrt(2 * m0))
         if abs(new - b) <= tol * new:
-            b = new
-            break
-        b = new
-    else:
-        raise RuntimeError("stochastic linearisation of the roll damping did not converge")
-    return bsm.rao(b, c44)[:, 1], b
+            return bsm.rao(new, c44)[:, 1], new
+        b = 0.5 * (b + new)
+    return None, math.nan
 
 
-def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_deg: float, c44_heeled: float,
+def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_deg: float, c44_heeled: float | None,
                    crew_height: float, levels) -> xr.Dataset:
     """Dead-ship roll and lateral acceleration in every sea state (hs, tz) of the scatter table ``p``.
 
     Parameters
     ----------
-    phi_f_deg : failure angle [degree]; phi_w_deg : heel under the steady wind [degree] (0: none).
-    c44_heeled : roll restoring W GZ'(phi_w) [N m/rad] about the wind heel.
+    phi_f_deg : failure angle [degree] (NaN: rates NaN); phi_w_deg : heel under the steady wind
+        [degree] (0: none; infinite: no equilibrium under the wind, rates infinite).
+    c44_heeled : roll restoring W GZ'(phi_w) [N m/rad] about the wind heel (None: upright C44).
     crew_height : height of the crew location above G [m].
     levels : lateral-acceleration levels [m/s^2] of the exceedance rates.
 
@@ -188,26 +170,41 @@ def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_d
     -------
     Dataset over (hs, tz): ``ds_roll_std`` [degree], ``ds_roll_period`` [s] (mean zero-crossing period
     2 pi sqrt(m0 / m2)), ``ds_b44_eq`` [N m s/rad], ``ds_failure_rate`` [1/s]; ``ea_acceleration_std``
-    [m/s^2]; and over (ea_level, hs, tz) ``ea_exceedance_rate`` [1/s] of |a_y| > level.
+    [m/s^2] (upright, no wind); and over (ea_level, hs, tz) ``ea_exceedance_rate`` [1/s] of |a_y| > level.
     """
     w = bsm.omega
     lv = np.asarray(levels, float)
     shape = p.shape
     sd, tzr, beq, rate, asd = (np.full(shape, np.nan) for _ in range(5))
     exc = np.full((len(lv),) + shape, np.nan)
-    a_lee = math.radians(phi_f_deg - phi_w_deg)
+    a_lee = math.radians(phi_f_deg - phi_w_deg) if math.isfinite(phi_w_deg) else -math.inf
     a_wind = math.radians(phi_f_deg + phi_w_deg)
+    heeled = phi_w_deg != 0.0 and math.isfinite(phi_w_deg)
     for i, hs in enumerate(p.hs.values):
         for j, tz in enumerate(p.tz.values):
             if not p.values[i, j] > 0:
                 continue
-            S = sea_spectrum(w, float(hs), float(tz))
-            X, beq[i, j] = linearised_response(bsm, S, c44_heeled)
+            hi = spectrum_band(float(hs), float(tz))[1]
+            if hi > w[-1]:
+                raise ValueError(f"beam seas: the sea state Hs {float(hs):g} m, Tz {float(tz):g} s reaches {hi:.2f} rad/s, "
+                                 f"beyond the model's frequency grid ({w[-1]:.2f} rad/s)")
+            S = band_spectrum(w, float(hs), float(tz))
+            X, beq[i, j] = linearised_response(bsm, S, c44_heeled if heeled else None)
+            if X is None:
+                continue
             m0, m2 = moments(w, np.abs(X) ** 2 * S)
             sd[i, j], tzr[i, j] = math.degrees(math.sqrt(m0)), 2 * math.pi * math.sqrt(m0 / m2)
-            rate[i, j] = (math.inf if a_lee <= 0 else rice_rate(m0, m2, a_lee) + rice_rate(m0, m2, a_wind))
-            A = np.abs((G + w**2 * crew_height) * X) ** 2 * S
-            a0, a2 = moments(w, A)
+            if math.isnan(phi_f_deg):
+                rate[i, j] = math.nan
+            elif a_lee <= 0:
+                rate[i, j] = math.inf  # the steady heel is at or beyond the failure angle
+            else:
+                rate[i, j] = rice_rate(m0, m2, a_lee) + rice_rate(m0, m2, a_wind)
+            # lateral acceleration of the upright ship without wind
+            Xa = linearised_response(bsm, S)[0] if heeled else X
+            if Xa is None:
+                continue
+            a0, a2 = moments(w, np.abs((G + w**2 * crew_height) * Xa) ** 2 * S)
             asd[i, j] = math.sqrt(a0)
             exc[:, i, j] = [2 * rice_rate(a0, a2, a) for a in lv]
     dims = ("hs", "tz")

@@ -311,23 +311,27 @@ def long_term_rate(cells: xr.Dataset, alpha: float = 0.05, dispersion: float = 1
 # Rice
 # --------------------------------------------------------------------------------------------------
 
-def rice_upcrossing_rate(omega, S, level: float) -> float:
-    """Up-crossing rate [1/s] of ``level`` by a zero-mean stationary Gaussian process.
-
-    Rice's formula nu+(a) = (1 / 2 pi) sqrt(m2 / m0) exp(-a^2 / (2 m0)), with the spectral moments
-    m_n = int omega^n S(omega) d omega by Simpson's rule on the given grid.
-
-    Parameters
-    ----------
-    omega : frequency grid [rad/s] (increasing; it must cover the spectrum).
-    S : one-sided spectral density on the grid [unit^2 s/rad].
-    level : the level a [unit].
-    """
+def moments(omega, S) -> tuple[float, float]:
+    """(m0, m2) of a one-sided spectrum ``S`` on the grid ``omega`` [rad/s] (Simpson's rule)."""
     w = np.asarray(omega, float)
     s = np.asarray(S, float)
-    m0 = simpson(s, x=w)
-    m2 = simpson(w**2 * s, x=w)
+    return float(simpson(s, x=w)), float(simpson(w**2 * s, x=w))
+
+
+def rice_rate(m0: float, m2: float, level: float) -> float:
+    """Up-crossing rate [1/s] of ``level`` by a zero-mean stationary Gaussian process with spectral
+    moments m0, m2: Rice's formula nu+(a) = (1 / 2 pi) sqrt(m2 / m0) exp(-a^2 / (2 m0)) (0 for a
+    process without variance)."""
+    if not m0 > 0:
+        return 0.0
     return float(np.sqrt(m2 / m0) / (2 * np.pi) * np.exp(-level**2 / (2 * m0)))
+
+
+def rice_upcrossing_rate(omega, S, level: float) -> float:
+    """Up-crossing rate [1/s] of ``level`` by a zero-mean stationary Gaussian process of one-sided
+    spectral density ``S`` [unit^2 s/rad] on the grid ``omega`` [rad/s] (increasing; it must cover
+    the spectrum): :func:`rice_rate` with the moments of :func:`moments`."""
+    return rice_rate(*moments(omega, S), level)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -354,6 +358,23 @@ def bretschneider_tz(omega, hs: float, tz: float):
     from stabflow.waves.spectra import bretschneider
 
     return bretschneider(omega, hs, tz / tz_over_tm())
+
+
+def band_spectrum(omega, hs: float, tz: float) -> np.ndarray:
+    """Bretschneider spectrum in (Hs [m], Tz [s]) on ``omega`` [rad/s] [m^2 s], zero outside the band
+    where it is above 1e-3 of its peak: the band of the ensembles' seaways (paper 004 eqs 23, 28;
+    :func:`stabflow.waves.spectra.cutoff_frequencies`)."""
+    w = np.asarray(omega, float)
+    lo, hi = spectrum_band(hs, tz)
+    return np.where((w >= lo) & (w <= hi), bretschneider_tz(w, hs, tz), 0.0)
+
+
+def spectrum_band(hs: float, tz: float) -> tuple[float, float]:
+    """(lowest, highest) frequency [rad/s] where the Bretschneider spectrum in (Hs, Tz) is above
+    1e-3 of its peak."""
+    from stabflow.waves.spectra import cutoff_frequencies
+
+    return cutoff_frequencies(lambda w: bretschneider_tz(w, hs, tz), 2 * np.pi * tz_over_tm() / tz)
 
 
 @dataclass(frozen=True)
@@ -439,8 +460,7 @@ class LinearRoll:
     def moments(self, hs: float, tz: float) -> tuple[float, float]:
         """(m0 [rad^2], m2 [rad^2/s^2]) of the roll spectrum on the band (Simpson on :attr:`grid`)."""
         w = self.grid
-        s = self.response_spectrum(w, hs, tz)
-        return float(simpson(s, x=w)), float(simpson(w**2 * s, x=w))
+        return moments(w, self.response_spectrum(w, hs, tz))
 
     def exact_rate(self, hs: float, tz: float, level_deg: float) -> float:
         """Exact up-crossing rate [1/s] of roll = +level [degree] in (Hs [m], Tz [s]) (Rice's formula)."""
@@ -452,7 +472,7 @@ class LinearRoll:
         unbounded Bretschneider spectrum integrated to ``w_hi`` [rad/s] (information only)."""
         w = np.concatenate([np.linspace(1e-3, self.w_max, 200001), np.linspace(self.w_max, w_hi, 200001)[1:]])
         s = np.abs(self.transfer(w)) ** 2 * (w**2 / G) ** 2 * bretschneider_tz(w, hs, tz)
-        m0, m2 = simpson(s, x=w), simpson(w**2 * s, x=w)
+        m0, m2 = moments(w, s)
         b0, b2 = self.moments(hs, tz)
         return float(1 - b0 / m0), float(1 - b2 / m2)
 

@@ -54,6 +54,18 @@ THRESHOLD_SIGMA = 3.5
 MIN_DISPERSION_DOF = 10
 
 
+def acceleration_missing(std: Standards) -> list[str]:
+    """What keeps the DSA row from a verdict on the lateral-acceleration side of the failure: the
+    failure includes the lateral acceleration at the highest crew location, whose limit is not
+    sourced; with a limit (an override) the engine does not count these failures yet. Never a
+    verdict on the roll alone."""
+    acc = std.get(ACC_KEY)
+    if not acc.available:
+        return [f"{acc.key} (lateral acceleration failure not assessed)"]
+    return [f"lateral-acceleration failures beyond the given limit {float(acc.value):g} m/s2: stabflow's DSA does not "
+            "count them yet (the criteria step's linear beam-sea estimate is ea_long_term_rate in the criteria results)"]
+
+
 def failure_angle(std: Standards, vanishing: float, flooding: float) -> tuple[float, str]:
     """The failure roll angle [degree]: min(sourced DSA limit, vanishing stability, flooding), and
     which one governs."""
@@ -322,13 +334,12 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     out["screen_bound"] = ((), bound, {"units": "1/year", "long_name": "upper bound of the screened cells' contribution"})
     out["interval_width"] = ((), width, {"units": "1/year", "long_name": "width of the simulated cells' interval"})
     out["failure_angle"] = ((), phi_f, {"units": "degree", "long_name": "failure roll angle"})
-    acc = std.get(ACC_KEY)
     row = against("DSA long-term failure rate (roll beyond the failure angle)", "SGISC direct stability assessment",
                   float(lt["rate"]), "1/year", std.get("sgisc.direct_stability_assessment.long_term_standard"), "<=",
                   note=f"interval [{float(lt['rate_lo']):.4g}, {float(lt['rate_hi']):.4g}] per year; failure angle "
                        f"{phi_f:.1f} deg ({governs}); the cells assessed hold "
                        f"{100 * cells.attrs['probability_used']:.2f} % of the scatter table's probability",
-                  missing=[] if acc.available else [f"{acc.key} (lateral acceleration failure not assessed)"])
+                  missing=acceleration_missing(std))
     out.encoding.update(cells.encoding)
     out.attrs["count_dispersion_used"] = used
     out.attrs.update(cells.attrs, failure_angle_governed_by=governs, failure_angle_source=std.get(FAIL_KEY).cite(),

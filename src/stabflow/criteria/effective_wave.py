@@ -11,7 +11,8 @@ For one component a cos(k x - w t + e) this is a cos(w t - e) F(k), and the inte
 
     F = 2 u sin(u) / (pi^2 - u^2),   u = k L / 2 = w^2 L / (2 g)  (deep water),
 
-with F = 1 at lambda = L (u = pi) and F -> 0 for long and short waves. The effective amplitude of a
+with F = 1 at lambda = L (u = pi) and F -> 0 for long and short waves (deep water; the sine part
+of the profile is odd about midships and drops out of the fit). The effective amplitude of a
 Gaussian sea is Gaussian with variance sigma^2 = int S(w) F(w)^2 dw. This is derived here from the
 fit's definition (the product-to-sum integral of cos k x cos 2 pi x / L over the ship's length); its
 agreement with the circular's formula was not checked against the circular's text (not read). The
@@ -64,35 +65,34 @@ def effective_wave_heights(p: xr.DataArray, length: float, n: int = 4001) -> xr.
     """Significant effective wave height H_eff = 4 sigma [m] of every sea state (hs, tz) of the scatter
     table ``p`` (:func:`stabflow.criteria.dsa.scatter_probabilities`): Bretschneider spectrum in
     (Hs, Tz) on the band where it is above 1e-3 of its peak, as the ensembles' seaways
-    (:func:`stabflow.waves.spectra.cutoff_frequencies`)."""
-    from stabflow.criteria.dsa import bretschneider_tz, tz_over_tm
-    from stabflow.waves.spectra import cutoff_frequencies
+    (:func:`stabflow.criteria.dsa.band_spectrum`), ``n`` points; deep water."""
+    from stabflow.criteria.dsa import bretschneider_tz, spectrum_band
 
     out = np.empty(p.shape)
     for i, hs in enumerate(p.hs.values):
         for j, tz in enumerate(p.tz.values):
-            lo, hi = cutoff_frequencies(lambda w: bretschneider_tz(w, hs, tz), 2 * math.pi * tz_over_tm() / tz)
-            w = np.linspace(lo, hi, n)
+            w = np.linspace(*spectrum_band(float(hs), float(tz)), n)
             out[i, j] = SIGNIFICANT * effective_wave_std(w, bretschneider_tz(w, hs, tz), length)
     return xr.DataArray(out, dims=("hs", "tz"), coords={"hs": p.hs, "tz": p.tz}, name="ew_effective_height")
 
 
 def vanishing_angle(heel, gz) -> float:
     """Angle of vanishing stability [degree] of a GZ curve ``gz`` [m] at heels ``heel`` [degree]: the
-    first heel beyond the curve's maximum where GZ falls to zero (linear interpolation; an angle of
-    loll before it does not count), the last heel if GZ stays positive, 0 if GZ is nowhere positive.
-    NaN values (no equilibrium found) end the curve."""
+    first heel where GZ falls back to zero after its first positive stretch (linear interpolation; an
+    angle of loll before that stretch does not count), the last heel if GZ stays positive, 0 if GZ is
+    nowhere positive. NaN values (no equilibrium found) end the curve."""
     gz = np.asarray(gz, float)
     ok = np.isfinite(gz)
     n = len(gz) if ok.all() else int(np.argmin(ok))
     gz, heel = gz[:n], np.asarray(heel, float)[:n]
-    if not n or not (gz > 0).any():
+    pos = np.flatnonzero(gz > 0)
+    if not len(pos):
         return 0.0
-    top = int(np.argmax(gz))
-    down = np.flatnonzero(gz[top:] <= 0)
+    start = int(pos[0])
+    down = np.flatnonzero(gz[start:] <= 0)
     if not len(down):
         return float(heel[-1])
-    b = top + int(down[0])
+    b = start + int(down[0])
     a = b - 1
     return float(heel[a] + (heel[b] - heel[a]) * gz[a] / (gz[a] - gz[b]))
 
@@ -113,7 +113,8 @@ def stability_on_effective_waves(sec, volume: float, lcg: float, kg: float, lwl:
     [-] ((GMmax - GMmin) / 2 / GM0, parametric rolling), ``ew_heel_vanishing`` [degree] (smallest
     angle of vanishing stability over crest positions, :func:`vanishing_angle`), ``ew_gz_max`` [m]
     (smallest over crest positions of the curve's maximum, pure loss of stability); and over
-    ``ew_height`` the tables they come from.
+    ``ew_height`` the tables they come from, with the GZ curves ``ew_table_gz`` (ew_height, ew_crest,
+    ew_heel) [m] (crest positions from -L/2 over one wave length, free sinkage and trim).
     """
     from stabflow.stability_in_waves.wave_pass import wave_gm, wave_gz
 
@@ -126,18 +127,21 @@ def stability_on_effective_waves(sec, volume: float, lcg: float, kg: float, lwl:
     gm = np.empty((n_heights, n_crest))
     vanish = np.empty((n_heights, n_crest))
     gzmax = np.empty((n_heights, n_crest))
+    gzs = np.empty((n_heights, n_crest, len(heel)))
     for i, H in enumerate(heights):
         guess = (None, None)
         for j, x in enumerate(xc):
             gm[i, j], _, _, guess = wave_gm(sec, volume, lcg, kg, 0.5 * H, k, x, guess)
-            gz = wave_gz(sec, volume, lcg, kg, 0.5 * H, k, x, heel)
+            gz = gzs[i, j] = wave_gz(sec, volume, lcg, kg, 0.5 * H, k, x, heel)
             gzmax[i, j] = np.nanmax(gz)
             vanish[i, j] = vanishing_angle(heel, gz)
     tab = xr.Dataset({"ew_table_gm_min": ("ew_height", gm.min(1)), "ew_table_gm_max": ("ew_height", gm.max(1)),
                       "ew_table_heel_vanishing": ("ew_height", vanish.min(1)),
-                      "ew_table_gz_max": ("ew_height", gzmax.min(1))}, coords={"ew_height": heights})
+                      "ew_table_gz_max": ("ew_height", gzmax.min(1)),
+                      "ew_table_gz": (("ew_height", "ew_crest", "ew_heel"), gzs)},
+                     coords={"ew_height": heights, "ew_crest": xc, "ew_heel": heel})
     h = heff.where(heff <= lam / 7.0)
-    at = tab.interp(ew_height=h)
+    at = tab.drop_vars("ew_table_gz").interp(ew_height=h)
     ds = xr.Dataset({"ew_effective_height": heff,
                      "ew_gm_min": at["ew_table_gm_min"].drop_vars("ew_height"),
                      "ew_gm_max": at["ew_table_gm_max"].drop_vars("ew_height"),

@@ -39,14 +39,73 @@ def crew_height(ship, depth: float) -> tuple[float, str]:
                    "no criteria.crew_location, e.g. the bridge)")
 
 
-def _weighted(p: xr.DataArray, x: xr.DataArray) -> float:
-    """sum p x over the sea states read (p NaN: not read), per second -> per year by the caller."""
-    ok = np.isfinite(p.values) & np.isfinite(x.values)
-    return float((p.values[ok] * x.values[ok]).sum())
+def _long_term(p: xr.DataArray, x: xr.DataArray) -> float:
+    """sum p x over the sea states that occur (p > 0; p NaN: not read), e.g. a rate [1/s]: infinite
+    when an occurring state's value is, NaN when one is NaN (never dropped)."""
+    occ = np.isfinite(p.values) & (p.values > 0)
+    v = x.values[occ]
+    if np.isnan(v).any():
+        return math.nan
+    return float((p.values[occ] * v).sum())
+
+
+def _fraction(p: xr.DataArray, flag: xr.DataArray) -> float:
+    """Probability of the occurring sea states where ``flag`` is 1, over those where it is defined
+    (NaN: e.g. an effective wave beyond the breaking steepness, reported separately)."""
+    occ = np.isfinite(p.values) & (p.values > 0) & np.isfinite(flag.values)
+    return float((p.values[occ] * flag.values[occ]).sum())
+
+
+def _extreme(x: xr.DataArray, p: xr.DataArray, fmt: str, unit: str, largest: bool) -> str:
+    """'value unit (Hs, Tz)' of the largest or smallest finite value over the occurring sea states."""
+    v = np.where(np.isfinite(p.values) & (p.values > 0) & np.isfinite(x.values), x.values, np.nan)
+    if not np.isfinite(v).any():
+        return "not computed in any sea state"
+    i, j = np.unravel_index(int(np.nanargmax(v) if largest else np.nanargmin(v)), v.shape)
+    return f"{v[i, j]:{fmt}}{' ' + unit if unit else ''} (Hs {float(p.hs[i]):g} m, Tz {float(p.tz[j]):g} s)"
+
+
+def _largest(x, p, fmt, unit=""):
+    return _extreme(x, p, fmt, unit, True)
+
+
+def _smallest(x, p, fmt, unit=""):
+    return _extreme(x, p, fmt, unit, False)
+
+
+def parametric_roll_sea_states(ew: xr.Dataset, pr: xr.Dataset, lam: float) -> xr.DataArray:
+    """Largest roll [degree] of the 1-DOF model with GZ on the passing wave
+    (:func:`stabflow.criteria.sgisc.roll_1dof`) on each sea state's effective wave (lambda = L,
+    height H_eff), over the regular-wave cases' headings and speeds (``pr``: their coefficients,
+    start heel, duration and step), the largest |roll| of the run's last quarter (90: capsized);
+    NaN for sea states without an effective wave (not occurring, or H_eff above L/7).
+
+    The GZ curves on the wave are interpolated linearly in height between the effective-wave
+    table's heights (``ew_table_gz``)."""
+    from stabflow.criteria.sgisc import roll_1dof
+
+    heel = ew["ew_heel"].values
+    k = 2 * math.pi / lam
+    c = math.sqrt(G / k)
+    dur, dt, phi0 = float(pr.attrs["pr_duration"]), float(pr.attrs["pr_dt"]), float(pr.attrs["pr_phi0_deg"])
+    keep = int(round(0.25 * dur / dt))
+    h = ew["ew_effective_height"]
+    out = np.full(h.shape, np.nan)
+    for i, j in zip(*np.nonzero(np.isfinite(h.values) & (h.values <= lam / 7.0))):
+        tab = ew["ew_table_gz"].interp(ew_height=float(h.values[i, j])).values
+        worst = 0.0
+        for mu in pr["pr_heading"].values:
+            for b, fn in enumerate(pr["pr_froude"].values):
+                v_rel = c * math.cos(math.radians(float(mu))) - float(fn) * math.sqrt(G * lam)
+                roll = roll_1dof(tab, heel, lam, v_rel, float(pr["pr_inertia"][b]), float(pr["pr_b44"][b]),
+                                 float(pr["pr_b44q"][b]), float(pr.attrs["pr_weight"]), phi0, dur, dt)
+                worst = max(worst, 90.0 if np.isnan(roll[-1]) else float(np.nanmax(np.abs(roll[-keep:]))))
+        out[i, j] = worst
+    return xr.DataArray(out, dims=h.dims, coords=h.coords, name="ew_roll_1dof")
 
 
 def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standards, r_pr: float,
-               depth: float, phi_f: tuple[float, str], hydro: xr.Dataset | None = None) -> tuple[list[Row], xr.Dataset]:
+               depth: float, phi_f: tuple[float, str], pr: xr.Dataset, hydro: xr.Dataset | None = None) -> tuple[list[Row], xr.Dataset]:
     """Rows and quantities of the level-2 sea-state physics of one ship.
 
     Parameters
@@ -57,6 +116,8 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
     r_pr : level 1's R_PR (the parametric-rolling ratio the effective-wave variation is set against).
     depth : deck height amidships [m] (the default crew location).
     phi_f : (failure angle [degree], what governs it) (:func:`stabflow.criteria.dsa_run.failure_angle`).
+    pr : the regular-wave parametric-roll cases (:func:`stabflow.criteria.sgisc.parametric_roll_cases`):
+        headings, speeds and 1-DOF coefficients of the sea-state parametric-roll runs.
     """
     from stabflow.config import _fill_defaults, schema
     from stabflow.statistics.ensemble import build_model
@@ -70,31 +131,44 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
     heff = effective_wave_heights(p, stab.lwl).where(occurs)
     ew = stability_on_effective_waves(sec, V, lcg, kg, stab.lwl, heff, stab.gm0, int(cfg["heights"]),
                                       int(cfg["crest_positions"]))
+    ew["ew_roll_1dof"] = parametric_roll_sea_states(ew, pr, stab.lwl)
     # ---- beam seas without way: dead ship and lateral acceleration ----
     cond = _fill_defaults(schema("config")["properties"]["ensembles"]["items"],
                           {"name": "dead_ship", "ship": ship.name, "speed_kn": 0.0, "heading_deg": 90.0, "records": 1,
                            "stations": int(cfg["stations"]), "duration": 60.0, "dt": 0.1})
     model = build_model(ship, cond, hydro)
     bsm = beam_sea_model(model)
-    phi_w = float(wq.get("wc_phi0", 0.0)) if math.isfinite(wq.get("wc_phi0", math.nan)) else 0.0
+    # the steady wind heel: IS Code phi0 where a windage is given (infinite: no equilibrium under the
+    # wind lever, the dead-ship rate is infinite), none without windage
     wind = "wc_phi0" in wq
-    slope = np.gradient(stab.gz, np.radians(stab.heel))
-    c44 = bsm.stiffness[1, 1] * float(np.interp(phi_w, stab.heel, slope)) / float(slope[0])
+    phi_w = float(wq["wc_phi0"]) if wind else 0.0
+    c44 = None
+    if wind and math.isfinite(phi_w) and phi_w != 0.0:
+        # roll restoring about the heel: W GZ'(phi_w), the upright C44 (= W GM) scaled by GZ'(phi_w) / GM
+        slope = np.gradient(stab.gz, np.radians(stab.heel))
+        c44 = bsm.stiffness[1, 1] * float(np.interp(phi_w, stab.heel, slope)) / stab.gm0
     z_crew, crew_note = crew_height(ship, depth)
     h = z_crew - kg
-    bs = beam_sea_cells(bsm, p.where(occurs), phi_f[0], phi_w, c44, h, cfg["acceleration_levels"])
+    acc = std.get(f"{SG}.excessive_acceleration.level_1.lateral_acceleration_limit")
+    levels = [float(a) for a in cfg["acceleration_levels"]]
+    if acc.available and float(acc.value) not in levels:
+        levels.append(float(acc.value))
+    bs = beam_sea_cells(bsm, p.where(occurs), phi_f[0], phi_w, c44, h, sorted(levels))
     ds = ew.merge(bs)
     # ---- long-term figures over the scatter table ----
+    breaking = ds["ew_effective_height"] > stab.lwl / 7.0
+    p_break = _fraction(p, breaking.astype(float))
     pr_exceeds = (ds["ew_delta_gm_ratio"] > r_pr).astype(float).where(ds["ew_delta_gm_ratio"].notnull())
-    frac_pr = _weighted(p, pr_exceeds)
+    frac_pr = _fraction(p, pr_exceeds)
     gm_neg = (ds["ew_gm_min"] < 0).astype(float).where(ds["ew_gm_min"].notnull())
-    frac_gm = _weighted(p, gm_neg)
-    ds_rate = _weighted(p, ds["ds_failure_rate"]) * YEAR
-    ea = np.array([_weighted(p, ds["ea_exceedance_rate"].isel(ea_level=i)) for i in range(ds.sizes["ea_level"])]) * YEAR
+    frac_gm = _fraction(p, gm_neg)
+    ds_rate = _long_term(p, ds["ds_failure_rate"]) * YEAR
+    ea = np.array([_long_term(p, ds["ea_exceedance_rate"].isel(ea_level=i)) for i in range(ds.sizes["ea_level"])]) * YEAR
     ds["ds_long_term_rate"] = ((), ds_rate)
     ds["ea_long_term_rate"] = ("ea_level", ea)
     ds["ew_probability_gm_negative"] = ((), frac_gm)
     ds["ew_probability_delta_gm_above_rpr"] = ((), frac_pr)
+    ds["ew_probability_breaking"] = ((), p_break)
     ds["ds_heel_wind"] = ((), phi_w)
     ds["ds_failure_angle"] = ((), phi_f[0])
     ds["ea_crew_height"] = ((), z_crew)
@@ -102,33 +176,44 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
     ds["ea_roll_period"] = ((), bsm.roll_period)
     ds["ea_acceleration_per_roll"] = ((), G + 4 * math.pi**2 * h / bsm.roll_period**2)
     ds["sea_probability"] = (("hs", "tz"), p.values)
-    ds.attrs.update(sea_states_scatter=scatter_src, ds_wind="IS Code 2.3 steady wind lever (phi0)" if wind else
-                    "none: no windage in the ship config (waves only)", ea_crew=crew_note,
+    ds.attrs.update(sea_states_scatter=scatter_src,
+                    ds_wind=("none: no windage in the ship config (waves only)" if not wind else
+                             "IS Code 2.3 steady wind lever (phi0)" if math.isfinite(phi_w) else
+                             "IS Code 2.3 steady wind lever above GZmax: no equilibrium, failure rate infinite"),
+                    ea_crew=crew_note,
                     ds_failure_angle_governed_by=phi_f[1])
 
     # ---- rows ----
     rows = []
-    big = ds["ew_effective_height"]
-    imax = np.unravel_index(int(np.nanargmax(ds["ew_delta_gm_ratio"].values)), p.shape)
     wc = std.get("sgisc.wave_data.pure_loss_and_parametric_roll_level2_wave_cases.cases")
     wave_miss = [] if wc.available else [f"{wc.key} (the circular's wave cases; stabflow weights Rec. 34 sea states)"]
+    breaking_note = (f"; sea states whose effective wave would break (H_eff > L/7, left out of these probabilities) "
+                     f"have probability {p_break:.3g}" if p_break > 0 else "")
     pl = f"{SG}.pure_loss_of_stability.level_2"
     miss = wave_miss + [f"{s.key} ({s.source})" for s in (std.get(f"{pl}.RPL1_angle_of_vanishing_stability_deg"),
                                                           std.get(f"{pl}.RPL2_heel_angle_deg"),
                                                           std.get(f"{pl}.RPL3_heel_lever_coefficient")) if not s.available]
     rows.append(against("pure loss of stability: max(CR1, CR2) on the effective waves", "SGISC pure loss, level 2",
                         math.nan, "-", std.get_or_missing(f"{pl}.RPL0", f"{CIRC}, pure loss level 2"), "<=", missing=miss,
-                        note=f"Grim effective wave lambda = L of each Rec. 34 sea state (largest H_eff {float(big.max()):.2f} m): "
-                             f"smallest angle of vanishing stability on it {float(ds['ew_heel_vanishing'].min()):.1f} deg, "
-                             f"smallest GZmax {float(ds['ew_gz_max'].min()):.3f} m; probability of sea states with GMmin < 0 "
-                             f"on the effective wave {frac_gm:.3g}"))
-    pr = f"{SG}.parametric_rolling.level_2"
+                        note=f"Grim effective wave lambda = L of each Rec. 34 sea state (largest H_eff "
+                             f"{_largest(ds['ew_effective_height'], p, '.2f', 'm')}): smallest angle of vanishing stability on it "
+                             f"{_smallest(ds['ew_heel_vanishing'], p, '.1f', 'deg')}, smallest GZmax "
+                             f"{_smallest(ds['ew_gz_max'], p, '.3f', 'm')}; probability of sea states with GMmin < 0 "
+                             f"on the effective wave {frac_gm:.3g}" + breaking_note))
+    pr_key = f"{SG}.parametric_rolling.level_2"
     rows.append(against("parametric rolling: C1 (GM variation on the effective waves)", "SGISC parametric rolling, level 2",
-                        math.nan, "-", std.get_or_missing(f"{pr}.RPR0", f"{CIRC}, parametric rolling level 2"), "<=",
+                        math.nan, "-", std.get_or_missing(f"{pr_key}.RPR0", f"{CIRC}, parametric rolling level 2"), "<=",
                         missing=wave_miss + ["the circular's speed condition of C1 (not read)"],
-                        note=f"largest delta GM / GM on the effective wave {float(ds['ew_delta_gm_ratio'].values[imax]):.3f} "
-                             f"(Hs {float(p.hs[imax[0]]):g} m, Tz {float(p.tz[imax[1]]):g} s); probability of sea states where it "
-                             f"exceeds level 1's R_PR {r_pr:.3f}: {frac_pr:.3g}"))
+                        note=f"largest delta GM / GM on the effective wave {_largest(ds['ew_delta_gm_ratio'], p, '.3f')}; "
+                             f"probability of sea states where it exceeds level 1's R_PR {r_pr:.3f}: {frac_pr:.3g}"
+                             + breaking_note))
+    rows.append(against("parametric rolling: C2 (1-DOF roll on the effective waves)", "SGISC parametric rolling, level 2",
+                        math.nan, "-", std.get_or_missing(f"{pr_key}.RPR0", f"{CIRC}, parametric rolling level 2"), "<=",
+                        missing=wave_miss + [f"{std.get(f'{pr_key}.roll_angle_threshold_deg').key} (the roll angle of C2)",
+                                             "the circular's speeds and headings of C2 (not read)"],
+                        note=f"largest 1-DOF roll with GZ on the passing effective wave {_largest(ds['ew_roll_1dof'], p, '.1f', 'deg')} "
+                             f"(headings {', '.join(f'{x:g}' for x in pr.pr_heading.values)} deg, Fn "
+                             f"{', '.join(f'{x:g}' for x in pr.pr_froude.values)}, from {float(pr.attrs['pr_phi0_deg']):g} deg heel)"))
     dl1 = std.get_or_missing(f"{SG}.dead_ship.level_1.standard", f"{CIRC}, dead ship level 1")
     area = (f"the IS Code weather criterion's areas a = {wq['wc_area_a']:.4f}, b = {wq['wc_area_b']:.4f} m rad"
             if "wc_area_a" in wq else "no windage in the ship config: the weather criterion's areas are not computed")
@@ -136,27 +221,26 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
                         ">=", missing=["the circular's level-1 steepness and roll-back tables (not read)"],
                         note=f"the level-1 check is of the weather criterion's kind; {area}"))
     rds = std.get_or_missing(f"{SG}.dead_ship.level_2.RDS0", f"{CIRC}, dead ship level 2")
-    worst = np.unravel_index(int(np.nanargmax(ds["ds_roll_std"].values)), p.shape)
+    rate_txt = ("not computed (no failure angle)" if math.isnan(ds_rate) else "infinite (the steady wind heel reaches the "
+                "failure angle or has no equilibrium)" if math.isinf(ds_rate) else f"{ds_rate:.4g} per year")
     rows.append(against("dead ship condition: long-term failure index C", "SGISC dead ship, level 2", math.nan, "-", rds, "<=",
                         missing=["the circular's exposure time and index C (not read)"],
-                        note=f"beam seas without way, linear roll with stochastically linearised damping: failure (roll "
-                             f"beyond {phi_f[0]:.1f} deg, {phi_f[1]}) rate over the Rec. 34 table {ds_rate:.4g} per year; "
-                             f"wind heel {phi_w:.2f} deg ({ds.attrs['ds_wind']}); largest roll sigma "
-                             f"{float(ds['ds_roll_std'].values[worst]):.2f} deg (Hs {float(p.hs[worst[0]]):g} m, "
-                             f"Tz {float(p.tz[worst[1]]):g} s)"))
+                        note=f"beam seas without way, linear roll with stochastically linearised damping (a lower estimate: "
+                             f"see the validation page): failure (roll beyond {phi_f[0]:.1f} deg, {phi_f[1]}) rate over the "
+                             f"Rec. 34 table {rate_txt}; wind heel {phi_w:.2f} deg ({ds.attrs['ds_wind']}); largest roll "
+                             f"sigma {_largest(ds['ds_roll_std'], p, '.2f', 'deg')}"))
     rows.append(against("excessive acceleration: lateral acceleration at the crew location", "SGISC excessive acceleration, level 1",
                         math.nan, "m/s2", std.get_or_missing(f"{SG}.excessive_acceleration.level_1.REA1", f"{CIRC}, level 1"),
                         "<=", missing=["the circular's level-1 roll amplitude (not read)"],
                         note=f"{crew_note}, {h:.2f} m above G; natural roll period {bsm.roll_period:.2f} s; lateral "
                              f"acceleration per radian of roll g + 4 pi^2 h / T^2 = {float(ds['ea_acceleration_per_roll']):.3f} m/s2"))
     lv = ds["ea_level"].values
-    worst = np.unravel_index(int(np.nanargmax(ds["ea_acceleration_std"].values)), p.shape)
     rows.append(against("excessive acceleration: long-term index C", "SGISC excessive acceleration, level 2", math.nan, "-",
                         std.get_or_missing(f"{SG}.excessive_acceleration.level_2.REA2", f"{CIRC}, level 2"), "<=",
-                        missing=[f"{std.get(f'{SG}.excessive_acceleration.level_1.lateral_acceleration_limit').key} (the "
-                                 "acceleration limit)", "the circular's index C (not read)"],
-                        note="beam seas without way at the crew location: rate of |a_y| above "
-                             + ", ".join(f"{a:g} m/s2 {r:.3g}" for a, r in zip(lv, ea)) + " per year over the Rec. 34 table; "
-                             f"largest sigma {float(ds['ea_acceleration_std'].values[worst]):.2f} m/s2 "
-                             f"(Hs {float(p.hs[worst[0]]):g} m, Tz {float(p.tz[worst[1]]):g} s)"))
+                        missing=([] if acc.available else [f"{acc.key} (the acceleration limit)"])
+                        + ["the circular's index C (not read)"],
+                        note="beam seas without way, upright, at the crew location: rate of |a_y| above "
+                             + ", ".join(f"{a:g} m/s2 {r:.3g}" for a, r in zip(lv, ea)) + " per year over the Rec. 34 table"
+                             + (f" (the limit {float(acc.value):g} m/s2 from the standards)" if acc.available else "")
+                             + f"; largest sigma {_largest(ds['ea_acceleration_std'], p, '.2f', 'm/s2')}"))
     return rows, ds

@@ -179,39 +179,18 @@ def roll_1dof(table: np.ndarray, heel_deg: np.ndarray, lam: float, v_rel: float,
         x_c(t) = v_rel t  (crest position, periodic over the wave length),
 
     GZ from :func:`wave_gz_table` (odd in heel), W = the ship's weight [N], RK4 with step ``dt``
-    [s], from rest at ``phi0_deg`` (the level-2 parametric-roll idea of a roll model whose
+    [s] (numba kernel ``stabflow.criteria._kernels._roll_1dof``), from rest at ``phi0_deg`` (the level-2 parametric-roll idea of a roll model whose
     restoring varies as the wave passes; the circular's exact equation was not read). Stops (NaN
     after) when |phi| leaves the table."""
-    n_x = table.shape[0]
+    from stabflow.criteria._kernels import _roll_1dof
+
     h = np.radians(np.asarray(heel_deg, float))
     hh = np.r_[-h[:0:-1], h]
-    tab = np.concatenate([-table[:, :0:-1], table], axis=1)
-
-    def gz(phi, t):
-        s = (v_rel * t / lam * n_x) % n_x
-        j = int(s)
-        f = s - j
-        row = (1 - f) * tab[j] + f * tab[(j + 1) % n_x]
-        return np.interp(phi, hh, row)
-
-    def rhs(t, y):
-        phi, p = y
-        return np.array([p, -(b44 * p + b44q * p * abs(p) + weight * gz(phi, t)) / inertia])
-
+    tab = np.ascontiguousarray(np.concatenate([-table[:, :0:-1], table], axis=1))
     n = int(round(duration / dt))
-    out = np.full(n + 1, np.nan)
-    y = np.array([math.radians(phi0_deg), 0.0])
-    out[0] = y[0]
-    for i in range(n):
-        t = i * dt
-        k1 = rhs(t, y)
-        k2 = rhs(t + dt / 2, y + dt / 2 * k1)
-        k3 = rhs(t + dt / 2, y + dt / 2 * k2)
-        k4 = rhs(t + dt, y + dt * k3)
-        y = y + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        if not abs(y[0]) < h[-1]:
-            break
-        out[i + 1] = y[0]
+    out = np.empty(n + 1)
+    _roll_1dof(tab, hh, float(lam), float(v_rel), float(inertia), float(b44), float(b44q), float(weight),
+               math.radians(phi0_deg), n, float(dt), out)
     return np.degrees(out)
 
 
@@ -230,7 +209,9 @@ def parametric_roll_cases(ship, cfg: dict, lam: float, hydro: xr.Dataset | None 
     Returns
     -------
     Dataset (heading, froude, steepness): ``pr_roll_1dof``, ``pr_roll_3dof`` (largest |roll| over the
-    last quarter of the run [degree], 90 when it capsized), ``pr_encounter_ratio`` (omega_e / omega_roll).
+    last quarter of the run [degree], 90 when it capsized), ``pr_encounter_ratio`` (omega_e / omega_roll);
+    over froude the 1-DOF coefficients ``pr_inertia`` (I44 + A44), ``pr_b44``, ``pr_b44q``; attributes
+    the ship's weight ``pr_weight`` [N] and the step ``pr_dt`` [s].
     """
     from stabflow.config import _fill_defaults, schema
     from stabflow.constants import G, KNOT
@@ -249,6 +230,7 @@ def parametric_roll_cases(ship, cfg: dict, lam: float, hydro: xr.Dataset | None 
     k = 2 * math.pi / lam
     w = math.sqrt(G * k)
     tables = None
+    inertia, b44, b44q = (np.empty(len(fns)) for _ in range(3))
     for b, fn in enumerate(fns):
         U = fn * math.sqrt(G * lam)
         c = _fill_defaults(schema("config")["properties"]["ensembles"]["items"],
@@ -258,6 +240,7 @@ def parametric_roll_cases(ship, cfg: dict, lam: float, hydro: xr.Dataset | None 
         # parameter vector
         model = build_model(ship, c, hydro)
         co, sec, st = model.co, model.sec, model.st
+        inertia[b], b44[b], b44q[b] = co.i44 + co.a44, co.b44, co.b44q
         if tables is None:  # GZ on the wave depends on the wave alone: once per steepness
             tables = [wave_gz_table(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]), lam, x * lam, heel)
                       for x in steep]
@@ -278,9 +261,12 @@ def parametric_roll_cases(ship, cfg: dict, lam: float, hydro: xr.Dataset | None 
     return xr.Dataset(
         {"pr_roll_1dof": (("pr_heading", "pr_froude", "pr_steepness"), r1),
          "pr_roll_3dof": (("pr_heading", "pr_froude", "pr_steepness"), r3),
-         "pr_encounter_ratio": (("pr_heading", "pr_froude", "pr_steepness"), ratio)},
+         "pr_encounter_ratio": (("pr_heading", "pr_froude", "pr_steepness"), ratio),
+         # the 1-DOF model's coefficients at each speed (the sea-state runs use them too)
+         "pr_inertia": ("pr_froude", inertia), "pr_b44": ("pr_froude", b44), "pr_b44q": ("pr_froude", b44q)},
         coords={"pr_heading": hs, "pr_froude": fns, "pr_steepness": steep},
-        attrs={"pr_wave_length": lam, "pr_phi0_deg": float(cfg["phi0_deg"]), "pr_duration": dur})
+        attrs={"pr_wave_length": lam, "pr_phi0_deg": float(cfg["phi0_deg"]), "pr_duration": dur,
+               "pr_weight": float(st["mass"]) * G, "pr_dt": dt})
 
 
 def parametric_level2_row(pr: xr.Dataset, std: Standards) -> Row:

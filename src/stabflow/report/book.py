@@ -328,7 +328,8 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
                 "gm_min": float(d.ew_gm_min.min()), "p_gm": float(d.ew_probability_gm_negative),
                 "dgm": float(d.ew_delta_gm_ratio.max()), "p_pr": float(d.ew_probability_delta_gm_above_rpr),
                 "vanish": float(d.ew_heel_vanishing.min()), "gzmax": float(d.ew_gz_max.min()),
-                "roll": float(d.ds_roll_std.max()), "rate": float(d.ds_long_term_rate), "tr": float(d.ea_roll_period),
+                "roll": float(d.ds_roll_std.max()), "roll1": float(d.ew_roll_1dof.max()),
+                "p_break": float(d.ew_probability_breaking), "rate": float(d.ds_long_term_rate), "tr": float(d.ea_roll_period),
                 "kacc": float(d.ea_acceleration_per_roll),
                 "acc": [(float(a), float(r)) for a, r in zip(d.ea_level.values, d.ea_long_term_rate.values)],
                 "figure": _copy(results / "criteria" / f"{name}_sea_states.png", figdir)}
