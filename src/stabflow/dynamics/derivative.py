@@ -43,7 +43,7 @@ from stabflow.dynamics import _kernels_derivative as KD
 from stabflow.dynamics.rigid_body import generalized_system
 from stabflow.dynamics.tables import kernel_args
 from stabflow.io import annotate
-from stabflow.waves.synthesis import _time_series_table, encounter_frequency, station_wave_table
+from stabflow.waves.synthesis import _time_series_table, encounter_frequency, one_blas_thread, station_wave_table
 
 FORCES = ("heave", "roll", "pitch")
 #: calm-water restoring terms (z, phi, theta exponents), paper 001 eqs 1-3
@@ -94,7 +94,8 @@ def _taylor_fit(rel, R, R0, dR, terms, ranges) -> tuple[np.ndarray, np.ndarray]:
     if high:
         A = _design(rel, [terms[j] for j in high], ranges)
         y = (R - fixed).reshape(-1, R.shape[-1]).T
-        c, *_ = np.linalg.lstsq(A, y, rcond=None)
+        with one_blas_thread():  # LAPACK's rounding depends on its threads: the same fit in every job
+            c, *_ = np.linalg.lstsq(A, y, rcond=None)
         out[..., high] = (c / np.array([np.prod(np.asarray(ranges) ** np.array(terms[j])) for j in high])[:, None]).T.reshape(
             lead + (len(high),))
         fixed += (A @ c).T.reshape(R.shape)
@@ -144,7 +145,8 @@ class DerivativeModel:
             # difference-frequency oscillation left out)
             flat2 = self.mean_over_a2.reshape(len(self.frequency), 3 * nw)
             m2 = np.array([np.interp(omega, self.frequency, flat2[:, j]) for j in range(3 * nw)])  # (3 nw, nc)
-            tab += (m2[:, inside] @ amp[inside] ** 2).reshape(3, nw).astype(dtype)[None]
+            with one_blas_thread():
+                tab += (m2[:, inside] @ amp[inside] ** 2).reshape(3, nw).astype(dtype)[None]
         return tab
 
 

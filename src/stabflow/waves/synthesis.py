@@ -49,11 +49,22 @@ def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     # gigabytes at once
     block = max(256, (TRIG_BLOCK_BYTES // max(1, 2 * nc * np.dtype(dtype).itemsize)) // 256 * 256)
     trig = np.empty((min(block, len(times)), 2 * nc), dtype=dtype)
-    for j0 in range(0, len(times), block):
-        m = min(block, len(times) - j0)
-        _trig_table(we, t0, dt, trig[:m], j0)
-        np.matmul(trig[:m], coef, out=out[j0: j0 + m])
+    with one_blas_thread():
+        for j0 in range(0, len(times), block):
+            m = min(block, len(times) - j0)
+            _trig_table(we, t0, dt, trig[:m], j0)
+            np.matmul(trig[:m], coef, out=out[j0: j0 + m])
     return out.reshape(len(times), npt, nq)
+
+
+def one_blas_thread():
+    """Context in which BLAS runs on one thread. A BLAS product's rounding depends on how many
+    threads share it (OpenBLAS splits the sums differently), so the wave tables would differ in the
+    last bits between a job given one thread and one given eight (Snakemake exports the rule's
+    threads to OPENBLAS/OMP_NUM_THREADS): same config and seed must give the same files."""
+    from threadpoolctl import threadpool_limits
+
+    return threadpool_limits(limits=1, user_api="blas")
 
 
 def encounter_frequency(omega, speed: float, heading_deg: float):
