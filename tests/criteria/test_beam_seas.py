@@ -1,6 +1,7 @@
 """The linear beam-sea model (dead ship, lateral acceleration): excitation interpolation, stochastic
 linearisation, Rice rates, and the model against the 3-DOF time domain in small waves."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -47,6 +48,14 @@ def test_excitation_interpolation(trawler):
         assert abs(b.force[i, 1] - direct) < 5e-3 * top
 
 
+def test_roll_column_by_cramer_equals_the_solve(trawler):
+    """X_roll by Cramer's rule (only Z[1, 1] carries b44 and c44) equals the full 3 x 3 solve."""
+    _, _, b = trawler
+    for b44, c44 in ((None, None), (3.0 * b.damping[1], None), (2.0 * b.damping[1], 0.7 * b.stiffness[1, 1])):
+        full = b.rao(b44, c44)[:, 1]
+        np.testing.assert_allclose(b.roll_rao(b44, c44), full, rtol=1e-9, atol=1e-12 * np.abs(full).max())
+
+
 def test_stochastic_linearisation_fixed_point(trawler):
     """B44_eq = B44 + sqrt(8/pi) sigma_rate B44q(sqrt(2) sigma) at the response it gives; without
     quadratic damping the linear coefficient itself."""
@@ -56,7 +65,7 @@ def test_stochastic_linearisation_fixed_point(trawler):
     m0, m2 = moments(b.omega, np.abs(X) ** 2 * S)
     assert beq == pytest.approx(b.damping[1] + bs.STOCHASTIC * math.sqrt(m2) * b.b44q_at(math.sqrt(2 * m0)), rel=1e-5)
     assert beq > b.damping[1]
-    lin = bs.BeamSeaModel(**{**b.__dict__, "b44q": np.zeros_like(b.b44q)})
+    lin = dataclasses.replace(b, b44q=np.zeros_like(b.b44q))
     assert bs.linearised_response(lin, S)[1] == b.damping[1]
 
 
@@ -96,7 +105,7 @@ def test_cells_rates_and_acceleration(trawler):
 def test_band_beyond_the_grid_is_an_error(trawler):
     """A sea state whose spectrum reaches beyond the model's frequency grid raises, naming it."""
     _, _, b = trawler
-    short = bs.BeamSeaModel(**{**b.__dict__, "omega": b.omega[b.omega < 2.0], "force": b.force[b.omega < 2.0]})
+    short = dataclasses.replace(b, omega=b.omega[b.omega < 2.0], force=b.force[b.omega < 2.0])
     p = xr.DataArray([[0.01]], dims=("hs", "tz"), coords={"hs": [1.5], "tz": [4.5]})
     with pytest.raises(ValueError, match="Tz 4.5 s"):
         bs.beam_sea_cells(short, p, 30.0, 0.0, None, 0.0, [1.0])

@@ -48,6 +48,7 @@ Waves and bands
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -102,6 +103,25 @@ class BeamSeaModel:
         Z = -(w**2) * np.diag(self.mass) + 1j * w * B + C
         return np.linalg.solve(Z, self.force[..., None])[..., 0]
 
+    def roll_rao(self, b44: float | None = None, c44: float | None = None) -> np.ndarray:
+        """The roll column of :meth:`rao`, by Cramer's rule: only Z[1, 1] depends on b44 and c44, and
+        it is not in the numerator (the roll column replaced by F), so
+        X_roll = N / (D0 + (i w (b44 - B44) + (c44 - C44)) M11) with N, D0 (at the model's B44, C44)
+        and the heave-pitch minor M11 computed once: the damping iteration costs no solve."""
+        N, D0, M11 = self._cramer
+        db = 0.0 if b44 is None else b44 - self.damping[1]
+        dc = 0.0 if c44 is None else c44 - self.stiffness[1, 1]
+        return N / (D0 + (1j * self.omega * db + dc) * M11)
+
+    @functools.cached_property
+    def _cramer(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        w = self.omega[:, None, None]
+        Z = -(w**2) * np.diag(self.mass) + 1j * w * np.diag(self.damping) + self.stiffness
+        Zr = Z.copy()
+        Zr[:, :, 1] = self.force
+        keep = [0, 2]
+        return np.linalg.det(Zr), np.linalg.det(Z), np.linalg.det(Z[:, keep][:, :, keep])
+
     def b44q_at(self, amplitude: float) -> float:
         """Quadratic roll damping [N m s^2/rad^2] at the roll amplitude ``amplitude`` [rad]."""
         return float(np.interp(amplitude, self.amplitudes, self.b44q))
@@ -143,11 +163,11 @@ def linearised_response(bsm: BeamSeaModel, S: np.ndarray, c44: float | None = No
     b = bsm.damping[1]
     w = bsm.omega
     for _ in range(max_iter):
-        X = bsm.rao(b, c44)[:, 1]
+        X = bsm.roll_rao(b, c44)
         m0, m2 = moments(w, np.abs(X) ** 2 * S)
         new = bsm.damping[1] + STOCHASTIC * math.sqrt(m2) * bsm.b44q_at(math.sqrt(2 * m0))
         if abs(new - b) <= tol * new:
-            return bsm.rao(new, c44)[:, 1], new
+            return bsm.roll_rao(new, c44), new
         b = 0.5 * (b + new)
     return None, math.nan
 

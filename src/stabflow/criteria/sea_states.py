@@ -90,9 +90,13 @@ def parametric_roll_sea_states(ew: xr.Dataset, pr: xr.Dataset, lam: float) -> xr
     dur, dt, phi0 = float(pr.attrs["pr_duration"]), float(pr.attrs["pr_dt"]), float(pr.attrs["pr_phi0_deg"])
     keep = int(round(0.25 * dur / dt))
     h = ew["ew_effective_height"]
+    heights, gz = ew["ew_height"].values, ew["ew_table_gz"].values
     out = np.full(h.shape, np.nan)
     for i, j in zip(*np.nonzero(np.isfinite(h.values) & (h.values <= lam / 7.0))):
-        tab = ew["ew_table_gz"].interp(ew_height=float(h.values[i, j])).values
+        H = float(h.values[i, j])
+        m = min(max(int(np.searchsorted(heights, H)) - 1, 0), len(heights) - 2)
+        f = (H - heights[m]) / (heights[m + 1] - heights[m])
+        tab = (1.0 - f) * gz[m] + f * gz[m + 1]
         worst = 0.0
         for mu in pr["pr_heading"].values:
             for b, fn in enumerate(pr["pr_froude"].values):

@@ -17,6 +17,8 @@ stays bounded, -> g a / T_i, for short ones.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from stabflow.waves._kernels import _trig_table
@@ -62,9 +64,16 @@ def one_blas_thread():
     threads share it (OpenBLAS splits the sums differently), so the wave tables would differ in the
     last bits between a job given one thread and one given eight (Snakemake exports the rule's
     threads to OPENBLAS/OMP_NUM_THREADS): same config and seed must give the same files."""
-    from threadpoolctl import threadpool_limits
+    return _blas_controller().limit(limits=1, user_api="blas")
 
-    return threadpool_limits(limits=1, user_api="blas")
+
+@functools.lru_cache(maxsize=1)
+def _blas_controller():
+    """The BLAS libraries loaded in this process, found once (threadpoolctl scans the process's
+    libraries, milliseconds per scan: too slow for every wave table)."""
+    from threadpoolctl import ThreadpoolController
+
+    return ThreadpoolController()
 
 
 def encounter_frequency(omega, speed: float, heading_deg: float):
