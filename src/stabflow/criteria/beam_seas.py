@@ -89,19 +89,22 @@ class BeamSeaModel:
     amplitudes: np.ndarray
     roll_period: float
 
-    def rao(self, b44: float | None = None, c44: float | None = None) -> np.ndarray:
-        """Complex (heave, roll, pitch) per unit wave amplitude (len(omega), 3) with the linear roll
-        damping ``b44`` [N m s/rad] (default: the model's) and roll restoring ``c44`` [N m/rad]
-        (default: the upright C44)."""
-        w = self.omega[:, None, None]
-        B = np.diag(self.damping).astype(complex)
-        if b44 is not None:
-            B[1, 1] = b44
+    def impedance(self, b44: float | None = None, c44: float | None = None) -> np.ndarray:
+        """-w^2 (M + A) + i w B + C (len(omega), 3, 3) with the roll damping ``b44`` [N m s/rad] and
+        restoring ``c44`` [N m/rad] (defaults: the model's B44 and upright C44)."""
+        B = self.damping.astype(complex)
         C = self.stiffness.astype(complex).copy()
+        if b44 is not None:
+            B[1] = b44
         if c44 is not None:
             C[1, 1] = c44
-        Z = -(w**2) * np.diag(self.mass) + 1j * w * B + C
-        return np.linalg.solve(Z, self.force[..., None])[..., 0]
+        w = self.omega[:, None, None]
+        return -(w**2) * np.diag(self.mass) + 1j * w * np.diag(B) + C
+
+    def rao(self, b44: float | None = None, c44: float | None = None) -> np.ndarray:
+        """Complex (heave, roll, pitch) per unit wave amplitude (len(omega), 3) by the full solve with
+        the impedance of :meth:`impedance`."""
+        return np.linalg.solve(self.impedance(b44, c44), self.force[..., None])[..., 0]
 
     def roll_rao(self, b44: float | None = None, c44: float | None = None) -> np.ndarray:
         """The roll column of :meth:`rao`, by Cramer's rule: only Z[1, 1] depends on b44 and c44, and
@@ -115,8 +118,7 @@ class BeamSeaModel:
 
     @functools.cached_property
     def _cramer(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        w = self.omega[:, None, None]
-        Z = -(w**2) * np.diag(self.mass) + 1j * w * np.diag(self.damping) + self.stiffness
+        Z = self.impedance()
         Zr = Z.copy()
         Zr[:, :, 1] = self.force
         keep = [0, 2]
@@ -204,11 +206,11 @@ def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_d
         for j, tz in enumerate(p.tz.values):
             if not p.values[i, j] > 0:
                 continue
-            hi = spectrum_band(float(hs), float(tz))[1]
-            if hi > w[-1]:
-                raise ValueError(f"beam seas: the sea state Hs {float(hs):g} m, Tz {float(tz):g} s reaches {hi:.2f} rad/s, "
-                                 f"beyond the model's frequency grid ({w[-1]:.2f} rad/s)")
-            S = band_spectrum(w, float(hs), float(tz))
+            band = spectrum_band(float(hs), float(tz))
+            if band[1] > w[-1]:
+                raise ValueError(f"beam seas: the sea state Hs {float(hs):g} m, Tz {float(tz):g} s reaches {band[1]:.2f} "
+                                 f"rad/s, beyond the model's frequency grid ({w[-1]:.2f} rad/s)")
+            S = band_spectrum(w, float(hs), float(tz), band)
             X, beq[i, j] = linearised_response(bsm, S, c44_heeled if heeled else None)
             if X is None:
                 continue

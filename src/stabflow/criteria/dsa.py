@@ -360,12 +360,13 @@ def bretschneider_tz(omega, hs: float, tz: float):
     return bretschneider(omega, hs, tz / tz_over_tm())
 
 
-def band_spectrum(omega, hs: float, tz: float) -> np.ndarray:
+def band_spectrum(omega, hs: float, tz: float, band: tuple[float, float] | None = None) -> np.ndarray:
     """Bretschneider spectrum in (Hs [m], Tz [s]) on ``omega`` [rad/s] [m^2 s], zero outside the band
     where it is above 1e-3 of its peak: the band of the ensembles' seaways (paper 004 eqs 23, 28;
-    :func:`stabflow.waves.spectra.cutoff_frequencies`)."""
+    :func:`stabflow.waves.spectra.cutoff_frequencies`); ``band`` that band when already found
+    (:func:`spectrum_band`)."""
     w = np.asarray(omega, float)
-    lo, hi = spectrum_band(hs, tz)
+    lo, hi = band or spectrum_band(hs, tz)
     return np.where((w >= lo) & (w <= hi), bretschneider_tz(w, hs, tz), 0.0)
 
 

@@ -32,6 +32,8 @@ from stabflow.constants import G
 
 #: the significant height of a Gaussian process as a multiple of its standard deviation (Hs = 4 sqrt(m0))
 SIGNIFICANT = 4.0
+#: steepness H / lambda beyond which a regular wave breaks (the config schema's limit, 1/7)
+BREAKING_STEEPNESS = 1.0 / 7.0
 
 
 def grim_transfer(omega, length: float) -> np.ndarray:
@@ -120,7 +122,7 @@ def stability_on_effective_waves(sec, volume: float, lcg: float, kg: float, lwl:
 
     lam = lwl
     k = 2 * math.pi / lam
-    top = min(float(np.nanmax(heff.values)), lam / 7.0)
+    top = min(float(np.nanmax(heff.values)), BREAKING_STEEPNESS * lam)
     heights = np.linspace(0.0, top, n_heights)
     xc = np.arange(n_crest) * lam / n_crest - lam / 2
     heel = np.asarray(heel_deg, float)
@@ -140,7 +142,7 @@ def stability_on_effective_waves(sec, volume: float, lcg: float, kg: float, lwl:
                       "ew_table_gz_max": ("ew_height", gzmax.min(1)),
                       "ew_table_gz": (("ew_height", "ew_crest", "ew_heel"), gzs)},
                      coords={"ew_height": heights, "ew_crest": xc, "ew_heel": heel})
-    h = heff.where(heff <= lam / 7.0)
+    h = heff.where(heff <= BREAKING_STEEPNESS * lam)
     at = tab.drop_vars("ew_table_gz").interp(ew_height=h)
     ds = xr.Dataset({"ew_effective_height": heff,
                      "ew_gm_min": at["ew_table_gm_min"].drop_vars("ew_height"),

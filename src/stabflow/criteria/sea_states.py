@@ -19,14 +19,10 @@ import xarray as xr
 from stabflow.constants import G
 from stabflow.criteria import dsa
 from stabflow.criteria.beam_seas import beam_sea_cells, beam_sea_model
-from stabflow.criteria.effective_wave import effective_wave_heights, stability_on_effective_waves
+from stabflow.criteria.effective_wave import BREAKING_STEEPNESS, effective_wave_heights, stability_on_effective_waves
 from stabflow.criteria.sgisc import CIRC, SG
 from stabflow.criteria.standards import Standards
 from stabflow.criteria.verdicts import Row, against
-
-#: seconds per year (365.25 d), as the DSA's long-term rate
-YEAR = dsa.SECONDS_PER_YEAR
-
 
 def crew_height(ship, depth: float) -> tuple[float, str]:
     """Height above the baseline of the highest crew location [m] from the ship config's
@@ -39,10 +35,15 @@ def crew_height(ship, depth: float) -> tuple[float, str]:
                    "no criteria.crew_location, e.g. the bridge)")
 
 
+def _occurs(p: xr.DataArray) -> np.ndarray:
+    """The sea states that occur: probability read (not NaN) and positive."""
+    return np.isfinite(p.values) & (p.values > 0)
+
+
 def _long_term(p: xr.DataArray, x: xr.DataArray) -> float:
-    """sum p x over the sea states that occur (p > 0; p NaN: not read), e.g. a rate [1/s]: infinite
-    when an occurring state's value is, NaN when one is NaN (never dropped)."""
-    occ = np.isfinite(p.values) & (p.values > 0)
+    """sum p x over the sea states that occur, e.g. a rate [1/s]: infinite when an occurring state's
+    value is, NaN when one is NaN (never dropped)."""
+    occ = _occurs(p)
     v = x.values[occ]
     if np.isnan(v).any():
         return math.nan
@@ -52,13 +53,13 @@ def _long_term(p: xr.DataArray, x: xr.DataArray) -> float:
 def _fraction(p: xr.DataArray, flag: xr.DataArray) -> float:
     """Probability of the occurring sea states where ``flag`` is 1, over those where it is defined
     (NaN: e.g. an effective wave beyond the breaking steepness, reported separately)."""
-    occ = np.isfinite(p.values) & (p.values > 0) & np.isfinite(flag.values)
+    occ = _occurs(p) & np.isfinite(flag.values)
     return float((p.values[occ] * flag.values[occ]).sum())
 
 
 def _extreme(x: xr.DataArray, p: xr.DataArray, fmt: str, unit: str, largest: bool) -> str:
     """'value unit (Hs, Tz)' of the largest or smallest finite value over the occurring sea states."""
-    v = np.where(np.isfinite(p.values) & (p.values > 0) & np.isfinite(x.values), x.values, np.nan)
+    v = np.where(_occurs(p) & np.isfinite(x.values), x.values, np.nan)
     if not np.isfinite(v).any():
         return "not computed in any sea state"
     i, j = np.unravel_index(int(np.nanargmax(v) if largest else np.nanargmin(v)), v.shape)
@@ -92,7 +93,7 @@ def parametric_roll_sea_states(ew: xr.Dataset, pr: xr.Dataset, lam: float) -> xr
     h = ew["ew_effective_height"]
     heights, gz = ew["ew_height"].values, ew["ew_table_gz"].values
     out = np.full(h.shape, np.nan)
-    for i, j in zip(*np.nonzero(np.isfinite(h.values) & (h.values <= lam / 7.0))):
+    for i, j in zip(*np.nonzero(np.isfinite(h.values) & (h.values <= BREAKING_STEEPNESS * lam))):
         H = float(h.values[i, j])
         m = min(max(int(np.searchsorted(heights, H)) - 1, 0), len(heights) - 2)
         f = (H - heights[m]) / (heights[m + 1] - heights[m])
@@ -131,7 +132,7 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
     V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
     # ---- Grim's effective wave: pure loss and parametric rolling ----
     # sea states that never occur (count 0) or were not read are left out (NaN), never weighted
-    occurs = np.isfinite(p.values) & (p.values > 0)
+    occurs = _occurs(p)
     heff = effective_wave_heights(p, stab.lwl).where(occurs)
     ew = stability_on_effective_waves(sec, V, lcg, kg, stab.lwl, heff, stab.gm0, int(cfg["heights"]),
                                       int(cfg["crest_positions"]))
@@ -160,14 +161,14 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
     bs = beam_sea_cells(bsm, p.where(occurs), phi_f[0], phi_w, c44, h, sorted(levels))
     ds = ew.merge(bs)
     # ---- long-term figures over the scatter table ----
-    breaking = ds["ew_effective_height"] > stab.lwl / 7.0
+    breaking = ds["ew_effective_height"] > BREAKING_STEEPNESS * stab.lwl
     p_break = _fraction(p, breaking.astype(float))
     pr_exceeds = (ds["ew_delta_gm_ratio"] > r_pr).astype(float).where(ds["ew_delta_gm_ratio"].notnull())
     frac_pr = _fraction(p, pr_exceeds)
     gm_neg = (ds["ew_gm_min"] < 0).astype(float).where(ds["ew_gm_min"].notnull())
     frac_gm = _fraction(p, gm_neg)
-    ds_rate = _long_term(p, ds["ds_failure_rate"]) * YEAR
-    ea = np.array([_long_term(p, ds["ea_exceedance_rate"].isel(ea_level=i)) for i in range(ds.sizes["ea_level"])]) * YEAR
+    ds_rate = _long_term(p, ds["ds_failure_rate"]) * dsa.SECONDS_PER_YEAR
+    ea = np.array([_long_term(p, ds["ea_exceedance_rate"].isel(ea_level=i)) for i in range(ds.sizes["ea_level"])]) * dsa.SECONDS_PER_YEAR
     ds["ds_long_term_rate"] = ((), ds_rate)
     ds["ea_long_term_rate"] = ("ea_level", ea)
     ds["ew_probability_gm_negative"] = ((), frac_gm)
