@@ -264,22 +264,27 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
                               "continuous servo)", kind="consistency"))
     h = float(cfg["regular"]["height"])
     lams = sorted(float(x) for x in cfg["regular"]["wavelengths"])[-2:]
-    thr = np.full((len(lams), 3), np.nan)
+    thr = np.full((len(lams), 4), np.nan)
+    full = "full 6-DOF"
+    wave_ref = ("Melnikov's method on the surge equation with the mean wave-induced surge force of the linear "
+                "heave-pitch response, k w_e Re(X^H B X) / 2 (absorbed wave momentum, Gerritsma & Beukelman 1972)")
     for i, lam in enumerate(lams):
+        tag = f"surf-riding threshold, regular following wave lambda {lam:g} m (lambda/L {lam / L:.2f}), H {h:g} m"
+        names = (f"{tag}: 6-DOF with only surge free (the surge equation in time) / Melnikov - 1",
+                 f"{tag}: {full} / Melnikov - 1",
+                 f"{tag}: {full} / Melnikov with the mean wave-induced surge force - 1")
+        refs = ("Melnikov's method on the surge equation",) * 2 + (wave_ref,)
         if not mc["surf_riding"]:
-            for what in ("6-DOF with only surge free (the surge equation in time)", "full 6-DOF"):
-                rows.append(Check.not_applicable(f"surf-riding threshold, lambda {lam:g} m: {what} / Melnikov - 1",
-                                                 "broaching.manoeuvres.surf_riding is off in this config", "-",
-                                                 "Melnikov's method on the surge equation"))
+            for name, ref in zip(names, refs):
+                rows.append(Check.not_applicable(name, "broaching.manoeuvres.surf_riding is off in this config", "-", ref))
             continue
         c = np.sqrt(G * lam / (2 * np.pi))
-        tag = f"surf-riding threshold, regular following wave lambda {lam:g} m (lambda/L {lam / L:.2f}), H {h:g} m"
         try:
             u_m = melnikov_threshold(model, lam, h)
         except ValueError as e:
-            for what in ("6-DOF with only surge free (the surge equation in time)", "full 6-DOF"):
-                rows.append(Check.failed(f"{tag}: {what} / Melnikov - 1", f"Melnikov's threshold not found: {e}", "-",
-                                         "Melnikov's method on the surge equation", kind="consistency", tolerance=0.05))
+            for name, ref in zip(names, refs):
+                rows.append(Check.failed(name, f"Melnikov's threshold not found: {e}", "-", ref, kind="consistency",
+                                         tolerance=0.05))
             continue
         thr[i, 0] = u_m
         for j, flags in ((1, (1, 0, 0, 0, 0, 0)), (2, (1, 1, 1, 1, 1, 1))):
@@ -290,11 +295,21 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
             except ValueError as e:
                 thr[i, j] = np.nan
                 out[f"surf_riding_{lam:g}_{j}_error"] = str(e)
-        ref = f"Melnikov's method on the surge equation: U_cr {u_m:.3f} m/s"
-        for j, what in ((1, "6-DOF with only surge free (the surge equation in time)"), (2, "full 6-DOF")):
-            name = f"{tag}: {what} / Melnikov - 1"
-            if np.isfinite(thr[i, j]):
-                rows.append(Check(name, thr[i, j] / u_m - 1.0, 0.05, "-", ref, kind="consistency"))
+        try:
+            thr[i, 3] = melnikov_threshold(model, lam, h, wave_force=True)
+            wave_err = None
+        except ValueError as e:
+            wave_err = str(e)
+        for name, ref, sim, u_ref, err in ((names[0], f"{refs[0]}: U_cr {u_m:.3f} m/s", thr[i, 1], u_m, None),
+                                           (names[1], f"{refs[1]}: U_cr {u_m:.3f} m/s", thr[i, 2], u_m, None),
+                                           (names[2], f"{refs[2]}: U_cr {thr[i, 3]:.3f} m/s", thr[i, 2], thr[i, 3],
+                                            wave_err)):
+            if err is not None:
+                rows.append(Check.failed(name, f"Melnikov's threshold with the wave force: {err} (the 6-DOF "
+                                         f"threshold is {thr[i, 2]:.3f} m/s)", "-", refs[2], kind="consistency",
+                                         tolerance=0.05))
+            elif np.isfinite(sim):
+                rows.append(Check(name, sim / u_ref - 1.0, 0.05, "-", ref, kind="consistency"))
             else:
                 rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
                                          "-", ref, kind="consistency", tolerance=0.05))
@@ -303,6 +318,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
     ds["surf_riding_melnikov"] = ("surf_case", thr[:, 0])
     ds["surf_riding_surge_only"] = ("surf_case", thr[:, 1])
     ds["surf_riding_six_dof"] = ("surf_case", thr[:, 2])
+    ds["surf_riding_melnikov_wave_force"] = ("surf_case", thr[:, 3])
     ds.attrs.update(manoeuvre_length=L, manoeuvre_speed=model.speed,
                     manoeuvre_breadth=float(particulars(section_parameters(model.sec, _statics(ship))).breadth))
     return ds, rows, tracks, zigzags

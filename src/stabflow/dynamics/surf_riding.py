@@ -22,6 +22,22 @@ surf-rides from any initial condition) is where it vanishes:
 The same construction underlies the surf-riding level-2 vulnerability criterion of the IMO
 second-generation criteria (Melnikov's method); its circular's text and tables could not be read
 here, so this derivation uses the model's own R(u) and f instead of the circular's.
+
+The mean wave-induced surge force. With heave and pitch free, the surge equation alone misses a
+second-order mean force. In the frame moving with the wave (celerity c) the incident-wave pressure
+field is steady, so its Froude-Krylov + hydrostatic loads are conservative: over a periodic motion
+their mean work vanishes, and the power they feed into heave and pitch (dissipated by the damping)
+is paid for by a mean surge force F0 with F0 (c - u) = D, D the mean dissipated power. This is the
+momentum of the wave energy the ship absorbs, the radiated-energy argument of Gerritsma &
+Beukelman (1972) for added resistance (a resistance in head seas, a thrust in following seas below
+the celerity). From the linear frequency-domain response X at the encounter frequency
+w_e = k (c - u): D = w_e^2 Re(X^H B X) / 2 with B the linear damping, so
+
+    F0(u) = k w_e Re(X^H B X) / 2,
+
+which vanishes at u = c (quasi-static motions). ``melnikov_threshold(..., wave_force=True)`` uses
+R(u) - F0(u) as the resistance along the orbit, F0 taken at the instantaneous speed (slowly varying
+speed: valid when F0 is small against f and the speed changes little over an encounter period).
 """
 
 from __future__ import annotations
@@ -29,7 +45,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-from scipy import integrate, optimize
+from scipy import integrate, interpolate, optimize
 
 from stabflow.constants import G
 from stabflow.dynamics import _kernels as K
@@ -71,16 +87,51 @@ def surge_force(model: SixDof, wavelength: float, height: float, n: int = 72) ->
     return f, float(np.arctan2(-cs, -sn))
 
 
-def melnikov_threshold(model: SixDof, wavelength: float, height: float) -> float:
+def mean_wave_surge_force(model: SixDof, wavelength: float, height: float, speeds) -> np.ndarray:
+    """Mean wave-induced surge force F0 [N] (positive forward) in a regular following wave at each
+    ship speed in ``speeds`` [m/s] (module docstring): F0 = k w_e Re(X^H B X) / 2 from the linear
+    6-DOF response X (:func:`.manoeuvring.linear_regular_response`) and the linear damping B of the
+    model; 0 at the celerity."""
+    from stabflow.dynamics.broaching import with_condition
+    from stabflow.dynamics.manoeuvring import linear_regular_response
+
+    k = 2 * np.pi / wavelength
+    c = np.sqrt(G / k)
+    B = model.p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
+    out = np.zeros(len(np.atleast_1d(speeds)))
+    for i, u in enumerate(np.atleast_1d(np.asarray(speeds, float))):
+        if abs(c - u) < 1e-6 * c:
+            continue  # w_e = 0: the motions are quasi-static, nothing is dissipated
+        X = linear_regular_response(with_condition(model, 0.0, float(u)), wavelength, 0.5 * height)
+        out[i] = 0.5 * k * k * (c - u) * float(np.real(np.conj(X) @ B @ X))
+    return out
+
+
+def melnikov_threshold(model: SixDof, wavelength: float, height: float, wave_force: bool = False) -> float:
     """Commanded speed U_cr [m/s] at the heteroclinic bifurcation of the surge equation (module
-    docstring): R(U_cr) = mean of R(c + x'_0(x)) over one wavelength."""
+    docstring): R(U_cr) = mean of R(c + x'_0(x)) over one wavelength; with ``wave_force``, R - F0
+    along the orbit (the mean wave-induced surge force of the heave-pitch response, interpolated on
+    24 speeds over the orbit's range). Raises ValueError if that mean is not positive (the ship
+    surf-rides at any commanded speed)."""
     k = 2 * np.pi / wavelength
     c = np.sqrt(G / k)
     f, _ = surge_force(model, wavelength, height)
     mass = float(model.p[K.P_MASS]) + float(model.m[K6.M_AB])
     amp = 2.0 * np.sqrt(f / (mass * k))
-    mean_r = integrate.quad(lambda x: float(resistance(model, c - amp * abs(np.cos(0.5 * k * x)))), 0.0,
-                            wavelength, limit=200)[0] / wavelength
+
+    spline = None
+    if wave_force:
+        grid = np.linspace(max(c - amp, 0.0), c, 24)
+        spline = interpolate.CubicSpline(grid, mean_wave_surge_force(model, wavelength, height, grid))
+
+    def net(x):
+        u = c - amp * abs(np.cos(0.5 * k * x))
+        return float(resistance(model, u)) - (0.0 if spline is None else float(spline(max(u, grid[0]))))
+
+    mean_r = integrate.quad(net, 0.0, wavelength, limit=200)[0] / wavelength
+    if mean_r <= 0.0:
+        raise ValueError(f"the mean wave-induced surge force exceeds the resistance along the orbit (mean net "
+                         f"resistance {mean_r:.0f} N): surf-riding at any commanded speed")
     return float(optimize.brentq(lambda u: float(resistance(model, u)) - mean_r, 1e-3, c))
 
 

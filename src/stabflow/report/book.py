@@ -425,7 +425,8 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
         man_rows.append((f"zig-zag {z}°/{z}°: second overshoot", val(f"zigzag_{z}_second_overshoot", ".1f", "°")))
     man_rows.append(("autopilot, 10° course change: overshoot", val("autopilot_step_overshoot", ".3f", "°")))
     surf = [{"lam": float(d.surf_riding_wavelength[i]), "melnikov": float(d.surf_riding_melnikov[i]),
-             "surge": float(d.surf_riding_surge_only[i]), "six": float(d.surf_riding_six_dof[i])}
+             "surge": float(d.surf_riding_surge_only[i]), "six": float(d.surf_riding_six_dof[i]),
+             "wave": float(d.surf_riding_melnikov_wave_force[i])}
             for i in range(d.sizes.get("surf_case", 0))]
     figs = _optional_figures(results, figdir, f"broaching/{ship}_{{}}.png",
                              tuple(f"motions_{lo}" for lo in d.loading.values) + ("strip", "manoeuvres", "map"))
