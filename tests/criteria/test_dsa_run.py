@@ -117,15 +117,54 @@ def test_cell_seeds_depend_on_the_cell_only():
     assert dsa_run.cell_seed(0, 1, 0, 0, 0, 0) != dsa_run.cell_seed(1000, 0, 0, 0, 0, 0)
 
 
-def test_acceleration_limit_never_gives_a_roll_only_verdict(tmp_path):
-    """Without a sourced lateral-acceleration limit the DSA row names it missing; with one (an
-    override) it still stays NOT EVALUATED, saying the engine does not count those failures yet."""
-    from stabflow.criteria.dsa_run import ACC_KEY, acceleration_missing
-    from stabflow.criteria.standards import Standards
+def test_acceleration_limit_comes_from_the_standards(tmp_path):
+    """Without a sourced lateral-acceleration limit the DSA row names it missing (no verdict on roll
+    alone); with one (an override) nothing is missing on that side: the engine counts it."""
+    from stabflow.criteria.dsa_run import ACC_KEY, acceleration_limit, acceleration_missing
 
     assert acceleration_missing(Standards()) == [f"{ACC_KEY} (lateral acceleration failure not assessed)"]
+    assert acceleration_limit(Standards()) is None
     p = tmp_path / "over.yaml"
     p.write_text("criteria_overrides:\n"
                  f"  - {{key: {ACC_KEY}, value: 9.81, source: 'test document 3.1'}}\n")
-    miss = acceleration_missing(Standards(p))
-    assert len(miss) == 1 and "9.81 m/s2" in miss[0] and "does not count them yet" in miss[0]
+    assert acceleration_missing(Standards(p)) == [] and acceleration_limit(Standards(p)) == 9.81
+
+
+def test_failures_are_the_union_of_roll_and_acceleration_crossings():
+    """Roll and lateral-acceleration crossings closer than the window are one failure; crossings of
+    a second acceleration level do not count."""
+    ens = xr.Dataset({"crossing_record": ("crossing", [0, 1]), "crossing_time": ("crossing", [10.0, 40.0]),
+                      "lateral_crossing_record": ("lateral_crossing", [0, 0, 1, 1]),
+                      "lateral_crossing_limit": ("lateral_crossing", [0, 0, 0, 1]),
+                      "lateral_crossing_time": ("lateral_crossing", [12.0, 30.0, 100.0, 70.0])},
+                     coords={"record": [0, 1]})
+    # record 0: 10 (roll) and 12 (acceleration) one failure, 30 another; record 1: 40 and 100; 70 is level 1
+    np.testing.assert_array_equal(dsa_run.failures_per_record(ens, 5.0), [2, 2])
+
+
+def test_acceleration_failures_add_to_the_roll_ones(small, tmp_path):
+    """The same small assessment with a lateral-acceleration limit (1.5 m/s2 at 10 m above the
+    baseline, an override): every cell simulated in both runs counts at least the roll failures,
+    with the same roll (same seeds); the cells' acceleration sigma grows with the sea; the row
+    names both failures and misses only the long-term standard."""
+    from stabflow.criteria.dsa_run import ACC_KEY
+
+    ship, roll_only = small
+    p = tmp_path / "over.yaml"
+    p.write_text("criteria_overrides:\n"
+                 f"  - {{key: {ACC_KEY}, value: 1.5, source: 'test document 3.1'}}\n")
+    crit = CRIT.assign(ea_crew_height=10.0)
+    both = dsa_run.assess_dsa(ship, crit, CFG, std=Standards(p))
+    m0, m1 = roll_only.method.values.astype(str), both.method.values.astype(str)
+    sim = (m0 != "screened") & (m1 != "screened")
+    assert sim.any()
+    np.testing.assert_array_equal(both.roll_sigma.values[sim], roll_only.roll_sigma.values[sim])
+    k0, k1 = roll_only.failures.values[sim & (m0 == "counted")], both.failures.values[sim & (m0 == "counted")]
+    assert (k1 >= k0).all() and (k1 > k0).any()
+    assert float(both.rate) > float(roll_only.rate)
+    i, j = int(np.argmin(both.hs.values)), int(np.argmax(both.hs.values))
+    assert both.lateral_sigma.values[j] > both.lateral_sigma.values[i] > 0
+    assert "lateral acceleration beyond 1.5 m/s2" in both.attrs["row_criterion"]
+    assert ACC_KEY not in both.attrs["row_reason"] and "long_term_standard" in both.attrs["row_reason"]
+    assert both.attrs["crew_height_above_g"] == pytest.approx(10.0 - 7.0)  # the barge's KG 7 m
+    assert "lateral" not in roll_only.attrs["row_criterion"]

@@ -196,3 +196,20 @@ def test_running_roll_amplitude_follows_lamp():
     const = dataclasses.replace(co, b44q_table=None, b44q=0.0)
     _, base = free_roll(sec, st, const, s.rho, 20.0, 60.0, 0.05)
     assert np.abs(roll[cross[2]:]).max() < np.abs(base[cross[2]:, K.S_ROLL]).max()
+
+
+def test_lateral_specific_force_of_harmonic_roll():
+    """Prescribed roll phi = A sin(w t), heave and pitch still: f_y = g sin(phi) + h A w^2 sin(w t)
+    (the linear (g + w^2 h) phi for small A); central differences of the rate: error O(dt^2)."""
+    from stabflow.constants import G
+    from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL
+    from stabflow.dynamics.rigid_body import lateral_specific_force
+
+    A, w, h, dt = 0.3, 0.6, 4.0, 0.05
+    t = np.arange(2000) * dt
+    st = np.zeros((len(t), N_STATE))
+    st[:, S_ROLL] = A * np.sin(w * t)
+    st[:, S_RATE + S_ROLL] = A * w * np.cos(w * t)
+    f = lateral_specific_force(st, dt, h)
+    exact = G * np.sin(st[:, S_ROLL]) + h * A * w**2 * np.sin(w * t)
+    np.testing.assert_allclose(f[1:-1], exact[1:-1], atol=h * A * w**4 * dt**2)

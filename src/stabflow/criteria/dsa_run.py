@@ -9,8 +9,10 @@ of a cell is the two-parameter Bretschneider spectrum at (Hs, Tz), long-crested,
 ensemble engine's seaway and 3-DOF model (:mod:`stabflow.statistics.ensemble`).
 
 Failure: roll beyond min(the DSA roll limit, the angle of vanishing stability, the flooding angle),
-each with its source. The lateral-acceleration failure needs a limit no readable source gave: it is
-named as missing in the results, not silently dropped.
+each with its source, or the lateral acceleration at the highest crew location beyond its limit
+(the lateral specific force of :func:`stabflow.dynamics.rigid_body.lateral_specific_force`). No
+readable source gave that limit: without it (an override supplies it) the acceleration side is
+named as missing in the results and the row gets no verdict, never one on roll alone.
 
 Per cell, in order:
 
@@ -19,16 +21,21 @@ Per cell, in order:
    nu_hi = 2 nu_0 exp(-phi_f^2 / (2 (k sigma)^2)) with nu_0 the run's zero up-crossing rate, at least
    1 / T_roll (both sides of the roll), is the cell's bound (a heuristic); below ``screen.rate``
    [1/s] (and no roll beyond half the failure angle in the run) the cell is *screened*: rate = the
-   Rice rate with the run's sigma, bounds [0, nu_hi]. Head and following seas (within
+   Rice rate with the run's sigma, bounds [0, nu_hi]; with an acceleration limit the same bound of
+   the acceleration (its own sigma and zero up-crossing rate) is added, and its run must stay below
+   half the limit. Head and following seas (within
    ``screen.parametric_deg``) are never screened: roll there is parametric, not Gaussian; their
    records start from ``initial_heel_deg``.
 2. Otherwise *simulated*: ``records`` records of ``duration``; failures are the declustered
-   exceedances of the failure angle (crossings of +-phi_f closer than the decorrelation time of the
-   cell's roll, at least one natural roll period, are one failure; a capsize is one) -> *counted*.
-   With none counted, the rate of
-   |roll| peaks beyond phi_f from a Poisson-GPD fit over 3.5 roll sigma (:mod:`stabflow.statistics
-   .extremes`, profile-likelihood interval) -> *extrapolated*; when the tail has too few exceedances
-   to fit, the zero count stays *counted* (its Poisson upper bound enters the interval).
+   exceedances of the failure angle (crossings of +-phi_f, and of +-the acceleration limit, closer
+   than the decorrelation time of the cell's roll, at least one natural roll period, are one
+   failure; a capsize is one) -> *counted*. With none counted, the rate of |roll| peaks beyond phi_f
+   from a Poisson-GPD fit over 3.5 roll sigma (:mod:`stabflow.statistics.extremes`,
+   profile-likelihood interval) -> *extrapolated*; with an acceleration limit, plus the same fit of
+   |acceleration| peaks over 3.5 of its sigma (the sum bounds the rate of either failure from above;
+   the interval runs from the larger lower bound to the sum of the upper bounds). When a tail has too
+   few exceedances to fit, the zero count stays *counted* (its Poisson upper bound enters the
+   interval).
 """
 
 from __future__ import annotations
@@ -54,16 +61,19 @@ THRESHOLD_SIGMA = 3.5
 MIN_DISPERSION_DOF = 10
 
 
-def acceleration_missing(std: Standards) -> list[str]:
-    """What keeps the DSA row from a verdict on the lateral-acceleration side of the failure: the
-    failure includes the lateral acceleration at the highest crew location, whose limit is not
-    sourced; with a limit (an override) the engine does not count these failures yet. Never a
-    verdict on the roll alone."""
+def acceleration_limit(std: Standards) -> float | None:
+    """The lateral-acceleration limit [m/s^2] of the DSA failure, None when no source (nor override)
+    gives it."""
     acc = std.get(ACC_KEY)
-    if not acc.available:
-        return [f"{acc.key} (lateral acceleration failure not assessed)"]
-    return [f"lateral-acceleration failures beyond the given limit {float(acc.value):g} m/s2: stabflow's DSA does not "
-            "count them yet (the criteria step's linear beam-sea estimate is ea_long_term_rate in the criteria results)"]
+    return float(acc.value) if acc.available else None
+
+
+def acceleration_missing(std: Standards) -> list[str]:
+    """What keeps the DSA row from a verdict on the lateral-acceleration side of the failure: its
+    limit, when not sourced (the row then never gives a verdict on the roll alone)."""
+    if acceleration_limit(std) is None:
+        return [f"{ACC_KEY} (lateral acceleration failure not assessed)"]
+    return []
 
 
 def failure_angle(std: Standards, vanishing: float, flooding: float) -> tuple[float, str]:
@@ -114,8 +124,9 @@ def cell_seed(master: int, *indices: int) -> int:
 
 
 def condition(cfg: dict, ship: str, hs: float, tz: float, heading: float, speed_kn: float, records: int,
-              duration: float, seed: int, phi_f: float, floor: float) -> dict:
-    """An ensemble condition (the ensembles schema, defaults filled) for one cell."""
+              duration: float, seed: int, phi_f: float, floor: float, lateral: dict | None = None) -> dict:
+    """An ensemble condition (the ensembles schema, defaults filled) for one cell; ``lateral`` the
+    engine's ``lateral_acceleration`` settings (crew height above G, limits, peak floor) or None."""
     tp = tz / dsa.tz_over_tm()
     c = {"name": "dsa", "ship": ship, "speed_kn": float(speed_kn), "heading_deg": float(heading),
          "sea": {"spectrum": "bretschneider", "hs": float(hs), "tp": float(tp), "n_components": int(cfg["n_components"])},
@@ -124,6 +135,8 @@ def condition(cfg: dict, ship: str, hs: float, tz: float, heading: float, speed_
          "samples": 0, "max_lag": float(cfg["max_lag"])}
     if cfg.get("dynamics"):
         c["dynamics"] = dict(cfg["dynamics"])
+    if lateral:
+        c["lateral_acceleration"] = dict(lateral)
     return _fill_defaults(schema("config")["properties"]["ensembles"]["items"], c)
 
 
@@ -142,10 +155,15 @@ def _models(ship: Ship, cfg: dict, headings, speeds, hydro, phi_f):
 
 def failures_per_record(ens: xr.Dataset, window: float) -> np.ndarray:
     """Declustered failures of each record (in the order of ``ens.record``): crossings of +-phi_f
-    (the only threshold) closer than ``window`` [s] within a record are one failure; a capsize is
-    one (it crossed phi_f first)."""
+    (the only threshold) and, when the run kept them, of +-the first lateral-acceleration limit,
+    closer than ``window`` [s] within a record are one failure; a capsize is one (it crossed phi_f
+    first)."""
     rec = ens["crossing_record"].values
     t = ens["crossing_time"].values
+    if "lateral_crossing_time" in ens:
+        first = ens["lateral_crossing_limit"].values == 0
+        rec = np.concatenate([rec, ens["lateral_crossing_record"].values[first]])
+        t = np.concatenate([t, ens["lateral_crossing_time"].values[first]])
     recs = ens["record"].values if "record" in ens.coords else np.unique(rec)
     out = np.zeros(len(recs), np.int64)
     for i, r in enumerate(recs):
@@ -185,21 +203,30 @@ def zero_crossing_rate(ens: xr.Dataset, roll_period: float) -> float:
 
 def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float, tau: float):
     """(rate, lo, hi) [1/s] of declustered |roll| peaks beyond phi_f (window ``tau`` [s], as the
-    counted failures) from a Poisson-GPD fit (NaN when too few exceed the threshold)."""
+    counted failures) from a Poisson-GPD fit (NaN when too few exceed the threshold); with the
+    run's lateral-acceleration peaks, plus the same fit of |acceleration| beyond its first limit:
+    (rate_roll + rate_acc, max(lo_roll, lo_acc), hi_roll + hi_acc) (NaN when either fit fails)."""
     from stabflow.statistics.extremes import block_estimates
 
     recs = ens["record"].values
     hours = float(ens["exposure_hours"])
-    u = THRESHOLD_SIGMA * float(ens["roll_std"])
     capd = ens["capsized"].values.astype(bool)
-    R, LO, HI, *_ = block_estimates(ens["peak_record"].values, ens["peak_time"].values.astype(float),
-                                    np.abs(ens["peak_value"].values.astype(float)), recs[capd],
-                                    ens["capsize_time"].values[capd], recs, hours, [u], [phi_f], tau, alpha, 0)
-    return R[0, 0] / 3600.0, LO[0, 0] / 3600.0, HI[0, 0] / 3600.0
+    series = [("peak", "roll_std", phi_f)]
+    if "lateral_peak_value" in ens:
+        series.append(("lateral_peak", "lateral_acceleration_std", float(ens["lateral_limit"][0])))
+    out = []
+    for name, sd, level in series:
+        R, LO, HI, *_ = block_estimates(ens[f"{name}_record"].values, ens[f"{name}_time"].values.astype(float),
+                                        np.abs(ens[f"{name}_value"].values.astype(float)), recs[capd],
+                                        ens["capsize_time"].values[capd], recs, hours, [THRESHOLD_SIGMA * float(ens[sd])],
+                                        [level], tau, alpha, 0)
+        out.append((R[0, 0] / 3600.0, LO[0, 0] / 3600.0, HI[0, 0] / 3600.0))
+    r, lo, hi = (np.array(x) for x in zip(*out))
+    return float(r.sum()), float(lo.max()), float(hi.sum())
 
 
 def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Dataset | None = None,
-                 std: Standards | None = None, progress: bool = False) -> xr.Dataset:
+                 std: Standards | None = None, progress: bool = False, crew_z: float | None = None) -> xr.Dataset:
     """Every cell's rate (method, failures, exposure, rate and interval, roll sigma) for one ship.
 
     Parameters
@@ -208,7 +235,10 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
         stations, n_components, seed, alpha, hs_max).
     phi_f : failure roll angle [degree].
     lwl : waterline length [m] of the loading (speeds from the Froude numbers).
+    crew_z : height of the highest crew location above the baseline [m]; needed when ``std`` gives a
+        lateral-acceleration limit (then a failure too).
     """
+    from stabflow import StabflowError
     from tqdm import tqdm
 
     from stabflow.statistics.signals import decorrelation_time
@@ -218,12 +248,19 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     speeds = [fn * math.sqrt(G * lwl) / KNOT for fn in cfg["froude_numbers"]]
     cells = cell_grid(std, cfg["headings_deg"], speeds, cfg.get("hs_max"))
     models = _models(ship, cfg, cfg["headings_deg"], speeds, hydro, phi_f)
+    acc_lim = acceleration_limit(std)
+    lateral = None
+    if acc_lim is not None:
+        if crew_z is None:
+            raise StabflowError(f"dsa: {ship.name}: a lateral-acceleration limit is given but no crew location height")
+        lateral = {"height": crew_z - float(next(iter(models.values())).st["kg"]), "limits": [acc_lim],
+                   "peak_floor": 0.0}
     t_build = time.process_time() - t0
     n = cells.sizes["cell"]
     method = np.empty(n, object)
     k = np.full(n, -1, np.int64)
     T = np.full(n, np.nan)
-    r, lo, hi, sig, rmax = (np.full(n, np.nan) for _ in range(5))
+    r, lo, hi, sig, rmax, asig = (np.full(n, np.nan) for _ in range(6))
     scr = cfg["screen"]
     t_screen = t_sim = 0.0
     # grid indices of each cell (its seeds do not depend on the order of the cells)
@@ -241,27 +278,39 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
         es = None
         if gaussian:
             cs = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, scr["records"], scr["duration"],
-                           cell_seed(cfg["seed"], *ix, 0), phi_f, 1.0)
+                           cell_seed(cfg["seed"], *ix, 0), phi_f, 1.0, lateral)
             es = run_cell(model, cs)
             t_screen += time.process_time() - a
             s = float(es["roll_std"])
-            nu0 = zero_crossing_rate(es, model.roll_period)
+            # Gaussian (Rice) rates of exceedance on both sides, (zero up-crossing rate, level, sigma) of
+            # the roll and, with a limit, of the lateral acceleration
+            sides = [(zero_crossing_rate(es, model.roll_period), phi_f, s)]
+            calm = float(es["roll_max"].max()) < 0.5 * phi_f and int(es["capsize_count"]) == 0
+            if lateral is not None:
+                sides.append((max(float(es["lateral_zero_upcrossing_rate"]), 1.0 / model.roll_period), acc_lim,
+                              float(es["lateral_acceleration_std"])))
+                calm = calm and float(es["lateral_max"].max()) < 0.5 * acc_lim
 
-            def rice(sd):
-                # both sides of the roll, narrow-band Gaussian (Rice)
-                return 2 * nu0 * math.exp(-phi_f**2 / (2 * sd**2)) if sd > 0 else 0.0
+            def rice(factor):
+                return sum(2 * nu0 * math.exp(-lev**2 / (2 * (factor * sd) ** 2)) if sd > 0 else 0.0
+                           for nu0, lev, sd in sides)
 
-            bound = rice(scr["sigma_factor"] * s)
-            if bound < scr["rate"] and float(es["roll_max"].max()) < 0.5 * phi_f and int(es["capsize_count"]) == 0:
-                method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = "screened", rice(s), 0.0, bound, s, float(es["roll_max"].max())
+            bound = rice(scr["sigma_factor"])
+            if lateral is not None:
+                asig[i] = sides[1][2]
+            if bound < scr["rate"] and calm:
+                method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = "screened", rice(1.0), 0.0, bound, s, float(es["roll_max"].max())
                 continue
         a = time.process_time()
         s = float(es["roll_std"]) if es is not None else 1.0
+        lat = None if lateral is None else dict(lateral, peak_floor=2.0 * asig[i] if np.isfinite(asig[i]) else 0.0)
         cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"],
-                       cell_seed(cfg["seed"], *ix, 1), phi_f, max(0.5, 2.0 * s))
+                       cell_seed(cfg["seed"], *ix, 1), phi_f, max(0.5, 2.0 * s), lat)
         ens = run_cell(model if gaussian else with_initial_heel(model, float(cfg["initial_heel_deg"])), cf)
         t_sim += time.process_time() - a
         sig[i], rmax[i] = float(ens["roll_std"]), float(ens["roll_max"].max())
+        if lateral is not None:
+            asig[i] = float(ens["lateral_acceleration_std"])
         T[i] = float(ens["exposure_hours"]) * 3600.0
         # declustering window: the decorrelation time of the cell's roll (as the extremes step), at
         # least one natural roll period; the same for the counted failures and the tail fit
@@ -281,9 +330,14 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     cells["failures"] = ("cell", k)
     cells["exposure"] = ("cell", T)
     cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
-    cells["roll_sigma"] = ("cell", sig)
-    cells["roll_max_cell"] = ("cell", rmax)
+    cells["roll_sigma"] = ("cell", sig, {"units": "degree", "long_name": "roll standard deviation of the cell's run"})
+    cells["roll_max_cell"] = ("cell", rmax, {"units": "degree", "long_name": "largest |roll| of the cell's run"})
+    if lateral is not None:
+        cells["lateral_sigma"] = ("cell", asig, {"units": "m/s2", "long_name": "standard deviation of the lateral "
+                                                 "acceleration at the crew location in the cell's run"})
     disp, dof = dsa.count_dispersion(per_record, weights)
+    if lateral is not None:
+        cells.attrs.update(lateral_acceleration_limit=acc_lim, crew_height_above_g=lateral["height"])
     cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
                        count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g} below "
@@ -318,7 +372,8 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     phi_f, governs = failure_angle(std, float(crit["heel_vanishing"]), float(crit["flooding_angle"]))
     if not math.isfinite(phi_f):
         raise StabflowError(f"dsa: {ship.name}: {governs}")
-    cells = assess_cells(ship, cfg, phi_f, float(crit["lwl"]), hydro, std, progress)
+    crew_z = float(crit["ea_crew_height"]) if "ea_crew_height" in crit else None
+    cells = assess_cells(ship, cfg, phi_f, float(crit["lwl"]), hydro, std, progress, crew_z)
     # declustered failures are taken as Poisson; where the records allow (cells with two or more
     # records and failures, at least MIN_DISPERSION_DOF degrees of freedom) an overdispersion
     # measured from them widens the counted cells' interval (never narrows it)
@@ -334,7 +389,10 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     out["screen_bound"] = ((), bound, {"units": "1/year", "long_name": "upper bound of the screened cells' contribution"})
     out["interval_width"] = ((), width, {"units": "1/year", "long_name": "width of the simulated cells' interval"})
     out["failure_angle"] = ((), phi_f, {"units": "degree", "long_name": "failure roll angle"})
-    row = against("DSA long-term failure rate (roll beyond the failure angle)", "SGISC direct stability assessment",
+    acc_lim = acceleration_limit(std)
+    what = "roll beyond the failure angle" + ("" if acc_lim is None else
+                                               f" or lateral acceleration beyond {acc_lim:g} m/s2 at the crew location")
+    row = against(f"DSA long-term failure rate ({what})", "SGISC direct stability assessment",
                   float(lt["rate"]), "1/year", std.get("sgisc.direct_stability_assessment.long_term_standard"), "<=",
                   note=f"interval [{float(lt['rate_lo']):.4g}, {float(lt['rate_hi']):.4g}] per year; failure angle "
                        f"{phi_f:.1f} deg ({governs}); the cells assessed hold "
@@ -343,7 +401,7 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     out.encoding.update(cells.encoding)
     out.attrs["count_dispersion_used"] = used
     out.attrs.update(cells.attrs, failure_angle_governed_by=governs, failure_angle_source=std.get(FAIL_KEY).cite(),
-                     row_verdict=row.verdict, row_reason=row.reason, row_source=row.source,
+                     row_criterion=row.criterion, row_verdict=row.verdict, row_reason=row.reason, row_source=row.source,
                      interval=lt.attrs["interval"], alpha=float(cfg["alpha"]),
                      screening_changes_less_than_interval=int(bound < width))
     return out

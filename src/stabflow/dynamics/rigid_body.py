@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from stabflow.constants import G
 from stabflow.dynamics import _kernels as K
 
 #: free flags of the 3-DOF model: heave, roll, pitch free; surge, sway, yaw held
@@ -108,3 +109,32 @@ def mechanical_energy(sec, p: np.ndarray, states: np.ndarray) -> np.ndarray:
         kinetic = 0.5 * m * float(v[:3] @ v[:3]) + 0.5 * float(w @ inertia @ w) + 0.5 * float(v @ added @ v)
         out[n] = kinetic + potential
     return out
+
+
+def lateral_specific_force(states: np.ndarray, dt: float, height: float, g: float = G) -> np.ndarray:
+    """Lateral specific force [m/s^2] (what a transverse accelerometer reads, positive towards the
+    side rolled down) at a point on the centreline ``height`` [m] above G, along a 3-DOF record.
+
+    With surge, sway and yaw held the body rate is (phi', theta' cos(phi), -theta' sin(phi)) and G
+    moves vertically, so the body-y component of a_P - g at r = (0, 0, h) is
+
+        f_y = (g + z'') cos(theta) sin(phi) - h phi'' - h theta'^2 sin(phi) cos(phi)
+
+    (rigid-body kinematics a_P = a_G + w' x r + w x (w x r)); for small harmonic roll of frequency w
+    this is (g + w^2 h) phi, the level-2 linear estimate. The accelerations phi'' and z'' are
+    second-order central differences of the state's rates (one-sided at the ends).
+
+    Parameters
+    ----------
+    states : array (n, N_STATE)
+        States every ``dt`` [s] (``S_*`` positions of :mod:`stabflow.dynamics._kernels`).
+    """
+    phi = states[:, K.S_ROLL]
+    theta = states[:, K.S_PITCH]
+    rate = states[:, K.S_RATE:K.S_RATE + 6]
+    if len(phi) < 2:
+        return (g * np.cos(theta) * np.sin(phi)).astype(float)
+    acc_roll = np.gradient(rate[:, K.S_ROLL], dt)
+    acc_heave = np.gradient(rate[:, K.S_Z], dt)
+    return ((g + acc_heave) * np.cos(theta) * np.sin(phi) - height * acc_roll
+            - height * rate[:, K.S_PITCH] ** 2 * np.sin(phi) * np.cos(phi))

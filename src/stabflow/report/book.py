@@ -359,7 +359,7 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
               "rate": float(d.cell_rate[i]) * 3600.0, "lo": float(d.cell_rate_lo[i]) * 3600.0,
               "hi": float(d.cell_rate_hi[i]) * 3600.0, "share": float(d.share[i]), "sigma": float(d.roll_sigma[i])}
              for i in top]
-    row = {"name": "DSA long-term failure rate (roll beyond the failure angle)", "level": "SGISC direct stability assessment",
+    row = {"name": a["row_criterion"], "level": "SGISC direct stability assessment",
            "value": float(d.rate), "unit": "1/year", "limit": None, "sense": "<=", "verdict": a["row_verdict"],
            "reason": a["row_reason"], "source": a["row_source"]}
     return {"row": row, "rate": float(d.rate), "lo": float(d.rate_lo), "hi": float(d.rate_hi), "parts": parts,
@@ -370,6 +370,8 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             "used": float(a["probability_used"]), "alpha": float(a["alpha"]), "screening": a["screening"],
             "disp": float(a["count_dispersion_estimate"]), "disp_dof": int(a["count_dispersion_dof"]),
             "disp_used": float(a["count_dispersion_used"]),
+            "acc_limit": float(a.get("lateral_acceleration_limit", np.nan)),
+            "crew_h": float(a.get("crew_height_above_g", np.nan)),
             "seconds": _benchmark_seconds(results, f"dsa/{name}.tsv"),
             "headings": sorted(set(float(x) for x in d.heading.values)),
             "speeds": sorted(set(float(x) for x in d.speed_kn.values)),

@@ -23,8 +23,9 @@ import xarray as xr
 
 from stabflow.config import Ship
 from stabflow.dynamics import coefficients
-from stabflow.dynamics._kernels import N_STATE, S_PITCH, S_RATE, S_ROLL, S_Z, _simulate, _simulate_batch
+from stabflow.dynamics._kernels import N_STATE, P_G, S_PITCH, S_RATE, S_ROLL, S_Z, _simulate, _simulate_batch
 from stabflow.dynamics.model import initial_state, parameters, section_depths
+from stabflow.dynamics.rigid_body import lateral_specific_force
 from stabflow.dynamics.tables import SectionTables, kernel_args, section_tables
 from stabflow.constants import KNOT
 from stabflow.geometry import Sections, build_hull
@@ -92,6 +93,11 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
     tables = section_tables(sec, int(cond.get("table_angles", 181)), int(cond.get("table_levels", 101)))
     p = parameters(co, s.rho, float(st["lcg"]), float(st["kg"]), float(cond["heading_deg"]))
     six = None
+    if int(cond.get("dof", 3)) == 6 and cond.get("lateral_acceleration"):
+        from stabflow import StabflowError
+
+        raise StabflowError(f"config: ensembles: {cond.get('name', '?')}: lateral_acceleration is computed for 3-DOF "
+                            "records only (the 6-DOF sway and yaw accelerations are not in it)")
     if int(cond.get("dof", 3)) == 6:
         from stabflow.dynamics.broaching import manoeuvring_from_ship
         from stabflow.dynamics.manoeuvring import build_six_dof
@@ -232,7 +238,32 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     out["acov"] = np.where(cnt > 0, acov, 0.0)
     out["acov_n"] = cnt
     out["psd"] = welch_psd(np.array([wave_mid[:n], h, roll, pitch]), model.dt) if n >= SPECTRUM_SEGMENT else None
+    la = cond.get("lateral_acceleration")
+    if la:
+        out["lateral"] = lateral_statistics(t, lateral_specific_force(states[:n], model.dt, float(la["height"]),
+                                                                        float(model.p[P_G])), la)
     return out
+
+
+def lateral_statistics(t: np.ndarray, acc: np.ndarray, la: dict) -> dict:
+    """What is kept of a record's lateral acceleration ``acc`` [m/s^2] at the crew location
+    (condition's ``lateral_acceleration``): crossings of +-each limit (limit index, side, time), signed
+    local peaks of |acc| above ``peak_floor``, the sum and sum of squares, the largest |acc| and the
+    zero up-crossings."""
+    jerk = np.gradient(acc, t) if len(t) > 1 else np.zeros_like(acc)
+    ev = []
+    for j, lim in enumerate(la["limits"]):
+        for side in (1, -1):
+            tc, _, _ = crossings(t, acc, jerk, side * float(lim), up=side > 0)
+            ev.append(np.column_stack([np.full(len(tc), j), np.full(len(tc), side), tc]))
+    floor = float(la["peak_floor"])
+    tp, vp = local_peaks(t, acc, floor)
+    tm, vm = local_peaks(t, -acc, floor)
+    order = np.argsort(np.concatenate([tp, tm]), kind="stable")
+    return {"crossings": np.concatenate(ev), "peaks": np.column_stack([np.concatenate([tp, tm]),
+                                                                         np.concatenate([vp, -vm])])[order],
+            "sums": np.array([acc.sum(), (acc**2).sum()]), "max": float(np.abs(acc).max()),
+            "zero_upcrossings": len(crossings(t, acc, jerk, 0.0, up=True)[0])}
 
 
 
@@ -341,6 +372,22 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
                 "threshold": np.array(cond["thresholds_deg"], float), "lag": np.arange(maxlag + 1) * model.dt,
                 "frequency": freq},
     )
+    if cond.get("lateral_acceleration"):  # the crew location's lateral acceleration
+        lat = [p["lateral"] for p in per]
+        lc = _events([q["crossings"] for q in lat], recs, 3)
+        lp = _events([q["peaks"] for q in lat], recs, 2)
+        ds["lateral_crossing_record"] = ("lateral_crossing", lc[:, 0].astype(np.int64))
+        ds["lateral_crossing_limit"] = ("lateral_crossing", lc[:, 1].astype(np.int64))
+        ds["lateral_crossing_side"] = ("lateral_crossing", lc[:, 2].astype(np.int8))
+        ds["lateral_crossing_time"] = ("lateral_crossing", lc[:, 3])
+        ds["lateral_peak_record"] = ("lateral_peak", lp[:, 0].astype(np.int64))
+        ds["lateral_peak_time"] = ("lateral_peak", lp[:, 1])
+        ds["lateral_peak_value"] = ("lateral_peak", lp[:, 2])
+        ds["lateral_max"] = ("record", np.array([q["max"] for q in lat]))
+        ds["lateral_sum"] = ("record", np.array([q["sums"][0] for q in lat]))
+        ds["lateral_sum_squares"] = ("record", np.array([q["sums"][1] for q in lat]))
+        ds["lateral_zero_upcrossings"] = ("record", np.array([q["zero_upcrossings"] for q in lat], np.int64))
+        ds = ds.assign_coords(lateral_limit=np.array(cond["lateral_acceleration"]["limits"], float))
     if model.six is not None:  # 6-DOF events per record
         ds["broached"] = ("record", np.array([p["broached"] for p in per], np.int8))
         ds["broach_time"] = ("record", np.array([p["broach_time"] for p in per]))
@@ -388,10 +435,14 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     mean response spectra, exposure time, capsize count and rate."""
     shards = sorted(shards, key=lambda d: int(d["record"][0]) if d.sizes["record"] else 0)
     rec_vars = ["steps", "capsized", "capsize_time", "roll_max", "moment_sums"]
-    rec_vars += [v for v in ("broached", "broach_time", "surf_riding") if v in shards[0]]
+    rec_vars += [v for v in ("broached", "broach_time", "surf_riding", "lateral_max", "lateral_sum", "lateral_sum_squares",
+                             "lateral_zero_upcrossings") if v in shards[0]]
     ev = {"crossing": [v for v in shards[0].data_vars if v.startswith("crossing_")],
           "peak": ["peak_record", "peak_time", "peak_value"],
           "envelope_peak": ["envelope_peak_record", "envelope_peak_time", "envelope_peak_value"]}
+    if "lateral_max" in shards[0]:
+        ev.update(lateral_crossing=[v for v in shards[0].data_vars if v.startswith("lateral_crossing_")],
+                  lateral_peak=["lateral_peak_record", "lateral_peak_time", "lateral_peak_value"])
     out = xr.concat([d[rec_vars] for d in shards], dim="record")
     for dim, names in ev.items():
         out = out.merge(xr.concat([d[names] for d in shards], dim=dim))
@@ -422,6 +473,12 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     out["exposure_hours"] = ((), hours)
     out["capsize_count"] = ((), int(out["capsized"].sum()))
     out["capsize_rate"] = ((), int(out["capsized"].sum()) / hours)
+    if "lateral_max" in out:
+        mean_a = float(out["lateral_sum"].sum()) / N
+        out["lateral_acceleration_std"] = ((), float(np.sqrt(max(float(out["lateral_sum_squares"].sum()) / N - mean_a**2,
+                                                                 0.0))))
+        out["lateral_zero_upcrossing_rate"] = ((), float(out["lateral_zero_upcrossings"].sum()) / (hours * 3600.0))
+        out = out.assign_coords(lateral_limit=shards[0]["lateral_limit"])
     if "broached" in out:
         out["broach_count"] = ((), int(out["broached"].sum()))
         out["surf_riding_count"] = ((), int(out["surf_riding"].sum()))
