@@ -120,6 +120,30 @@ def test_criteria_results_and_chapters(pipeline):
         assert {v for k, v in status.items() if k not in beam} == {"PASS"} and len(status) >= 10
 
 
+def test_criteria_chapter_names_the_acceleration_failure(pipeline, tmp_path):
+    """The DSA paragraph names the sourced lateral-acceleration limit (Circ.1627 3.2.1.2) and the crew
+    location's height above G; a DSA file without them (no limit) says that side is not assessed.
+    The DSA row has a verdict against the sourced standard (3.1.2)."""
+    import shutil
+
+    from stabflow.report.book import criteria_page
+
+    res = tmp_path / "results"
+    (res / "criteria").mkdir(parents=True)
+    for f in (pipeline / "criteria").glob("barge*"):
+        shutil.copy(f, res / "criteria")
+    (tmp_path / "fig").mkdir()
+    page = criteria_page("barge", res, tmp_path / "fig")
+    assert "lateral acceleration beyond **9.81 m/s²** at the crew location" in page and "3.2.1.2" in page
+    with xr.open_dataset(res / "criteria" / "barge_dsa.nc") as d:
+        d = d.load()
+    assert d.attrs["row_verdict"] in ("PASS", "FAIL")
+    for k in ("lateral_acceleration_limit", "crew_height_above_g", "lateral_acceleration_source"):
+        del d.attrs[k]
+    d.to_netcdf(res / "criteria" / "barge_dsa.nc")
+    assert "lateral-acceleration failure is not assessed" in criteria_page("barge", res, tmp_path / "fig")
+
+
 def test_rerun_is_bit_identical(pipeline, tmp_path):
     """Same config → bit-identical NetCDF files (hull, statics)."""
     out = tmp_path / "again"

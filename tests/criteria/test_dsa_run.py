@@ -55,7 +55,7 @@ def test_cell_grid_probabilities():
     assert (g.probability > 0).all()
 
 
-CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan, "lwl": 100.0})
+CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan, "lwl": 100.0, "ea_crew_height": 10.0})
 
 
 @pytest.fixture(scope="module")
@@ -83,12 +83,18 @@ def test_small_assessment(small):
 
 def test_long_term_rate_and_row(small):
     """The long-term rate is the sum of the cells' contributions, inside its interval; the DSA row
-    is NOT EVALUATED (no sourced standard) and says so; the failure angle is the sourced 40 deg."""
+    compares the interval's upper bound with the sourced standard (Circ.1627 3.1.2, 2.6e-3 per ship
+    per year) and so has a verdict; the failure angle is the sourced 40 deg, the lateral-acceleration
+    limit the sourced 9.81 m/s2 at the crew location (10 m above the baseline, KG 7 m)."""
     _, ds = small
     assert float(ds.contribution.sum()) == pytest.approx(float(ds.rate), rel=1e-9)
     assert float(ds.rate_lo) <= float(ds.rate) <= float(ds.rate_hi)
     assert float(ds.failure_angle) == 40.0 and ds.attrs["failure_angle_governed_by"] == "DSA roll limit"
-    assert ds.attrs["row_verdict"] == "NOT EVALUATED" and "long_term_standard" in ds.attrs["row_reason"]
+    assert ds.attrs["row_value"] == float(ds.rate_hi) and ds.attrs["row_limit"] == 2.6e-3
+    assert ds.attrs["row_verdict"] == ("PASS" if float(ds.rate_hi) <= 2.6e-3 else "FAIL")
+    assert "3.1.2" in ds.attrs["row_source"] and "lateral acceleration beyond 9.81 m/s2" in ds.attrs["row_criterion"]
+    assert ds.attrs["lateral_acceleration_limit"] == 9.81 and ds.attrs["crew_height_above_g"] == pytest.approx(3.0)
+    assert "3.2.1.2" in ds.attrs["lateral_acceleration_source"]
     assert ds.attrs["screening_changes_less_than_interval"] == int(float(ds.screen_bound) < float(ds.interval_width))
     # the barge in beam seas up to Hs 5.5 m: failures are counted in some cells, and they carry the rate
     m = ds.method.values.astype(str)
@@ -104,7 +110,7 @@ def test_long_term_rate_and_row(small):
 
 def test_small_assessment_is_deterministic(small):
     ship, cells = small
-    again = dsa_run.assess_cells(ship, CFG, 40.0, 100.0)
+    again = dsa_run.assess_cells(ship, CFG, 40.0, 100.0, crew_z=10.0)
     np.testing.assert_array_equal(cells.roll_sigma.values, again.roll_sigma.values)
     np.testing.assert_array_equal(cells.failures.values, again.failures.values)
     np.testing.assert_array_equal(cells.cell_rate_hi.values[cells.method.values != "counted"],
@@ -118,16 +124,22 @@ def test_cell_seeds_depend_on_the_cell_only():
 
 
 def test_acceleration_limit_comes_from_the_standards(tmp_path):
-    """Without a sourced lateral-acceleration limit the DSA row names it missing (no verdict on roll
-    alone); with one (an override) nothing is missing on that side: the engine counts it."""
+    """The sourced lateral-acceleration limit (Circ.1627 3.2.1.2) is a failure the engine counts;
+    without one (a data file whose entry is null) the DSA row names it missing, never a verdict on
+    roll alone; an override changes it."""
     from stabflow.criteria.dsa_run import ACC_KEY, acceleration_limit, acceleration_missing
 
-    assert acceleration_missing(Standards()) == [f"{ACC_KEY} (lateral acceleration failure not assessed)"]
-    assert acceleration_limit(Standards()) is None
+    assert acceleration_limit(Standards()) == 9.81 and acceleration_missing(Standards()) == []
+    std = Standards()
+    std.entries[ACC_KEY] = {**std.entries[ACC_KEY], "value": None, "missing": "not found (test)"}
+    assert acceleration_missing(std) == [f"{ACC_KEY} (lateral acceleration failure not assessed)"]
+    assert acceleration_limit(std) is None
+    with pytest.raises(Exception, match="crew location"):
+        dsa_run.assess_cells(load_ship(SHIPS / "barge.yaml"), CFG, 40.0, 100.0)
     p = tmp_path / "over.yaml"
     p.write_text("criteria_overrides:\n"
-                 f"  - {{key: {ACC_KEY}, value: 9.81, source: 'test document 3.1'}}\n")
-    assert acceleration_missing(Standards(p)) == [] and acceleration_limit(Standards(p)) == 9.81
+                 f"  - {{key: {ACC_KEY}, value: 4.0, source: 'stricter requirement of an Administration'}}\n")
+    assert acceleration_limit(Standards(p)) == 4.0
 
 
 def test_failures_are_the_union_of_roll_and_acceleration_crossings():
@@ -142,29 +154,25 @@ def test_failures_are_the_union_of_roll_and_acceleration_crossings():
     np.testing.assert_array_equal(dsa_run.failures_per_record(ens, 5.0), [2, 2])
 
 
-def test_acceleration_failures_add_to_the_roll_ones(small, tmp_path):
-    """The same small assessment with a lateral-acceleration limit (1.5 m/s2 at 10 m above the
-    baseline, an override): every cell simulated in both runs counts at least the roll failures,
-    with the same roll (same seeds); the cells' acceleration sigma grows with the sea; the row
-    names both failures and misses only the long-term standard."""
+def test_a_lower_acceleration_limit_adds_failures(small, tmp_path):
+    """The same small assessment with a lateral-acceleration limit of 1.5 m/s2 (an override) instead
+    of 9.81: every cell simulated in both runs counts at least as many failures, with the same roll
+    (same seeds); the cells' acceleration sigma grows with the sea; the row names the limit."""
     from stabflow.criteria.dsa_run import ACC_KEY
 
-    ship, roll_only = small
+    ship, base = small
     p = tmp_path / "over.yaml"
     p.write_text("criteria_overrides:\n"
                  f"  - {{key: {ACC_KEY}, value: 1.5, source: 'test document 3.1'}}\n")
-    crit = CRIT.assign(ea_crew_height=10.0)
-    both = dsa_run.assess_dsa(ship, crit, CFG, std=Standards(p))
-    m0, m1 = roll_only.method.values.astype(str), both.method.values.astype(str)
+    low = dsa_run.assess_dsa(ship, CRIT, CFG, std=Standards(p))
+    m0, m1 = base.method.values.astype(str), low.method.values.astype(str)
     sim = (m0 != "screened") & (m1 != "screened")
     assert sim.any()
-    np.testing.assert_array_equal(both.roll_sigma.values[sim], roll_only.roll_sigma.values[sim])
-    k0, k1 = roll_only.failures.values[sim & (m0 == "counted")], both.failures.values[sim & (m0 == "counted")]
+    np.testing.assert_array_equal(low.roll_sigma.values[sim], base.roll_sigma.values[sim])
+    k0, k1 = base.failures.values[sim & (m0 == "counted")], low.failures.values[sim & (m0 == "counted")]
     assert (k1 >= k0).all() and (k1 > k0).any()
-    assert float(both.rate) > float(roll_only.rate)
-    i, j = int(np.argmin(both.hs.values)), int(np.argmax(both.hs.values))
-    assert both.lateral_sigma.values[j] > both.lateral_sigma.values[i] > 0
-    assert "lateral acceleration beyond 1.5 m/s2" in both.attrs["row_criterion"]
-    assert ACC_KEY not in both.attrs["row_reason"] and "long_term_standard" in both.attrs["row_reason"]
-    assert both.attrs["crew_height_above_g"] == pytest.approx(10.0 - 7.0)  # the barge's KG 7 m
-    assert "lateral" not in roll_only.attrs["row_criterion"]
+    assert float(low.rate) > float(base.rate)
+    i, j = int(np.argmin(low.hs.values)), int(np.argmax(low.hs.values))
+    assert low.lateral_sigma.values[j] > low.lateral_sigma.values[i] > 0
+    assert "lateral acceleration beyond 1.5 m/s2" in low.attrs["row_criterion"]
+    assert ACC_KEY not in low.attrs["row_reason"]

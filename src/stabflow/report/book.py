@@ -360,7 +360,7 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
               "hi": float(d.cell_rate_hi[i]) * 3600.0, "share": float(d.share[i]), "sigma": float(d.roll_sigma[i])}
              for i in top]
     row = {"name": a["row_criterion"], "level": "SGISC direct stability assessment",
-           "value": float(d.rate), "unit": "1/year", "limit": None, "sense": "<=", "verdict": a["row_verdict"],
+           "value": float(a["row_value"]), "unit": "1/year", "limit": float(a["row_limit"]) if np.isfinite(a["row_limit"]) else None, "sense": "<=", "verdict": a["row_verdict"],
            "reason": a["row_reason"], "source": a["row_source"]}
     return {"row": row, "rate": float(d.rate), "lo": float(d.rate_lo), "hi": float(d.rate_hi), "parts": parts,
             "cells": cells, "n": int(d.sizes["cell"]), "phi_f": float(d.failure_angle),
@@ -372,6 +372,7 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             "disp_used": float(a["count_dispersion_used"]),
             "acc_limit": float(a.get("lateral_acceleration_limit", np.nan)),
             "crew_h": float(a.get("crew_height_above_g", np.nan)),
+            "acc_source": str(a.get("lateral_acceleration_source", "")),
             "seconds": _benchmark_seconds(results, f"dsa/{name}.tsv"),
             "headings": sorted(set(float(x) for x in d.heading.values)),
             "speeds": sorted(set(float(x) for x in d.speed_kn.values)),
