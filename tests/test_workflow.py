@@ -137,7 +137,7 @@ def test_criteria_chapter_names_the_acceleration_failure(pipeline, tmp_path):
     assert "lateral acceleration beyond **9.81 m/s²** at the crew location" in page and "3.2.1.2" in page
     with xr.open_dataset(res / "criteria" / "barge_dsa.nc") as d:
         d = d.load()
-    assert d.attrs["row_verdict"] in ("PASS", "FAIL")
+    assert d.attrs["row_verdict"] == "FAIL" and float(d.rate_lo) > 2.6e-3  # the bare barge, by far
     for k in ("lateral_acceleration_limit", "crew_height_above_g", "lateral_acceleration_source"):
         del d.attrs[k]
     d.to_netcdf(res / "criteria" / "barge_dsa.nc")

@@ -83,15 +83,17 @@ def test_small_assessment(small):
 
 def test_long_term_rate_and_row(small):
     """The long-term rate is the sum of the cells' contributions, inside its interval; the DSA row
-    compares the interval's upper bound with the sourced standard (Circ.1627 3.1.2, 2.6e-3 per ship
-    per year) and so has a verdict; the failure angle is the sourced 40 deg, the lateral-acceleration
+    judges the interval against the sourced standard (Circ.1627 3.1.2, 2.6e-3 per ship per year):
+    PASS when its upper bound meets it, FAIL when its lower bound exceeds it; the failure angle is the sourced 40 deg, the lateral-acceleration
     limit the sourced 9.81 m/s2 at the crew location (10 m above the baseline, KG 7 m)."""
     _, ds = small
     assert float(ds.contribution.sum()) == pytest.approx(float(ds.rate), rel=1e-9)
     assert float(ds.rate_lo) <= float(ds.rate) <= float(ds.rate_hi)
     assert float(ds.failure_angle) == 40.0 and ds.attrs["failure_angle_governed_by"] == "DSA roll limit"
-    assert ds.attrs["row_value"] == float(ds.rate_hi) and ds.attrs["row_limit"] == 2.6e-3
-    assert ds.attrs["row_verdict"] == ("PASS" if float(ds.rate_hi) <= 2.6e-3 else "FAIL")
+    # the bare barge fails by far: its interval's lower bound is above the standard
+    assert float(ds.rate_lo) > 2.6e-3 and ds.attrs["row_limit"] == 2.6e-3
+    assert ds.attrs["row_value"] == float(ds.rate_lo) and ds.attrs["row_verdict"] == "FAIL"
+    assert "lower bound of its 95 % interval" in ds.attrs["row_criterion"]
     assert "3.1.2" in ds.attrs["row_source"] and "lateral acceleration beyond 9.81 m/s2" in ds.attrs["row_criterion"]
     assert ds.attrs["lateral_acceleration_limit"] == 9.81 and ds.attrs["crew_height_above_g"] == pytest.approx(3.0)
     assert "3.2.1.2" in ds.attrs["lateral_acceleration_source"]
@@ -115,6 +117,19 @@ def test_small_assessment_is_deterministic(small):
     np.testing.assert_array_equal(cells.failures.values, again.failures.values)
     np.testing.assert_array_equal(cells.cell_rate_hi.values[cells.method.values != "counted"],
                                   again.rate_hi.values[again.method.values != "counted"])
+
+
+def test_row_straddling_the_standard_has_no_verdict(small, tmp_path):
+    """An interval that straddles the standard decides nothing: NOT EVALUATED, saying so (the
+    standard overridden to lie inside the barge's interval)."""
+    ship, ds = small
+    p = tmp_path / "over.yaml"
+    mid = float(np.sqrt(float(ds.rate_lo) * float(ds.rate_hi)))
+    p.write_text("criteria_overrides:\n"
+                 f"  - {{key: sgisc.direct_stability_assessment.long_term_standard, value: {mid}, source: 'test'}}\n")
+    again = dsa_run.assess_dsa(ship, CRIT, CFG, std=Standards(p))
+    assert again.attrs["row_verdict"] == "NOT EVALUATED" and "straddles the standard" in again.attrs["row_reason"]
+    assert again.attrs["row_value"] == float(again.rate)
 
 
 def test_cell_seeds_depend_on_the_cell_only():

@@ -213,3 +213,27 @@ def test_lateral_specific_force_of_harmonic_roll():
     f = lateral_specific_force(st, dt, h)
     exact = G * np.sin(st[:, S_ROLL]) + h * A * w**2 * np.sin(w * t)
     np.testing.assert_allclose(f[1:-1], exact[1:-1], atol=h * A * w**4 * dt**2)
+
+
+def test_lateral_specific_force_with_heave_and_pitch():
+    """Roll with heave and pitch: f_y = (g + z'') cos(theta) sin(phi) - h phi'' - h theta'^2 sin(phi)
+    cos(phi) for prescribed harmonic z, phi, theta (the heave and pitch terms checked, not only roll)."""
+    from stabflow.constants import G
+    from stabflow.dynamics._kernels import N_STATE, S_PITCH, S_RATE, S_ROLL, S_Z
+    from stabflow.dynamics.rigid_body import lateral_specific_force
+
+    dt, h = 0.02, 3.0
+    t = np.arange(3000) * dt
+    (A, w), (Z, wz), (T, wt) = (0.4, 0.5), (2.0, 0.9), (0.2, 1.3)
+    st = np.zeros((len(t), N_STATE))
+    st[:, S_ROLL], st[:, S_RATE + S_ROLL] = A * np.sin(w * t), A * w * np.cos(w * t)
+    st[:, S_Z], st[:, S_RATE + S_Z] = Z * np.sin(wz * t), Z * wz * np.cos(wz * t)
+    st[:, S_PITCH], st[:, S_RATE + S_PITCH] = T * np.sin(wt * t), T * wt * np.cos(wt * t)
+    phi, th = st[:, S_ROLL], st[:, S_PITCH]
+    exact = ((G - Z * wz**2 * np.sin(wz * t)) * np.cos(th) * np.sin(phi) + h * A * w**2 * np.sin(w * t)
+             - h * (T * wt * np.cos(wt * t)) ** 2 * np.sin(phi) * np.cos(phi))
+    f = lateral_specific_force(st, dt, h)
+    np.testing.assert_allclose(f[1:-1], exact[1:-1], atol=2e-3)
+    # each term matters at this tolerance: dropping heave's or pitch's term misses by far more
+    assert np.max(np.abs(Z * wz**2 * np.sin(wz * t) * np.cos(th) * np.sin(phi))) > 0.5
+    assert np.max(np.abs(h * (T * wt) ** 2 * np.sin(phi) * np.cos(phi))) > 0.05

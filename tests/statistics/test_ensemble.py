@@ -218,6 +218,10 @@ def test_lateral_acceleration_statistics():
                       (ens["lateral_crossing_side"] == side)
                 assert n == int(sel.sum())
     assert int((ens["lateral_crossing_limit"] == 0).sum()) > 0  # the test exercises crossings
+    # sharding: two shards merged give the same lateral variables as one
+    two = merge([run_shard(m, range(2, 4), progress=False), run_shard(m, range(0, 2), progress=False)])
+    for v in [v for v in ens.variables if str(v).startswith("lateral")]:
+        np.testing.assert_allclose(two[v].values, ens[v].values, rtol=1e-12, err_msg=v)
 
 
 def test_lateral_acceleration_is_refused_for_six_dof():

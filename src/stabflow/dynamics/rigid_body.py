@@ -112,8 +112,12 @@ def mechanical_energy(sec, p: np.ndarray, states: np.ndarray) -> np.ndarray:
 
 
 def lateral_specific_force(states: np.ndarray, dt: float, height: float, g: float = G) -> np.ndarray:
-    """Lateral specific force [m/s^2] (what a transverse accelerometer reads, positive towards the
-    side rolled down) at a point on the centreline ``height`` [m] above G, along a 3-DOF record.
+    """Lateral specific force [m/s^2] (what a transverse accelerometer reads, body +y, to port) at a
+    point on the centreline ``height`` [m] above G, along a 3-DOF record. Heeled starboard down
+    (phi > 0) its gravity part points to the raised side; the pull the crew feels is its opposite.
+    Sway is held in the 3-DOF records: a free ship's sway acceleration, which in long beam waves
+    partly cancels the g sin(phi) term, is not in it (an overestimate at low encounter frequency; at
+    the roll resonance the sign of the difference is not assured).
 
     With surge, sway and yaw held the body rate is (phi', theta' cos(phi), -theta' sin(phi)) and G
     moves vertically, so the body-y component of a_P - g at r = (0, 0, h) is

@@ -250,11 +250,10 @@ def lateral_statistics(t: np.ndarray, acc: np.ndarray, la: dict) -> dict:
     (condition's ``lateral_acceleration``): crossings of +-each limit (limit index, side, time), signed
     local peaks of |acc| above ``peak_floor``, the sum and sum of squares, the largest |acc| and the
     zero up-crossings."""
-    jerk = np.gradient(acc, t) if len(t) > 1 else np.zeros_like(acc)
     ev = []
     for j, lim in enumerate(la["limits"]):
         for side in (1, -1):
-            tc, _, _ = crossings(t, acc, jerk, side * float(lim), up=side > 0)
+            tc, _, _ = crossings(t, acc, acc, side * float(lim), up=side > 0)  # no rate kept
             ev.append(np.column_stack([np.full(len(tc), j), np.full(len(tc), side), tc]))
     floor = float(la["peak_floor"])
     tp, vp = local_peaks(t, acc, floor)
@@ -263,7 +262,7 @@ def lateral_statistics(t: np.ndarray, acc: np.ndarray, la: dict) -> dict:
     return {"crossings": np.concatenate(ev), "peaks": np.column_stack([np.concatenate([tp, tm]),
                                                                          np.concatenate([vp, -vm])])[order],
             "sums": np.array([acc.sum(), (acc**2).sum()]), "max": float(np.abs(acc).max()),
-            "zero_upcrossings": len(crossings(t, acc, jerk, 0.0, up=True)[0])}
+            "zero_upcrossings": len(crossings(t, acc, acc, 0.0, up=True)[0])}
 
 
 
