@@ -20,3 +20,39 @@ def test_wave_table_independent_of_blas_threads():
         with threadpool_limits(limits=n, user_api="blas"):
             tabs.append(station_wave_table(amp, w, ph, xs, 90.0, 0.0, t))
     assert all(np.array_equal(tabs[0], x) for x in tabs[1:])
+
+
+def test_blas_limit_holds_while_any_thread_is_inside():
+    """Two Python threads (the split-time step runs records in a thread pool): the one-thread BLAS
+    limit holds until the last leaves; the first to leave must not lift it for the other."""
+    import threading
+
+    from threadpoolctl import threadpool_info
+
+    from stabflow.waves.synthesis import one_blas_thread
+
+    def blas_threads():
+        return {d["num_threads"] for d in threadpool_info() if d["user_api"] == "blas"}
+
+    entered, a_left, seen = threading.Event(), threading.Event(), []
+
+    def a():
+        with one_blas_thread():
+            entered.set()
+            b_in.wait()
+        a_left.set()
+
+    def b():
+        entered.wait()
+        with one_blas_thread():
+            b_in.set()
+            a_left.wait()
+            seen.append(blas_threads())
+
+    b_in = threading.Event()
+    before = blas_threads()
+    ta, tb = threading.Thread(target=a), threading.Thread(target=b)
+    ta.start(), tb.start()
+    ta.join(5), tb.join(5)
+    assert seen == [{1}] or not before  # no threaded BLAS loaded: nothing to see
+    assert blas_threads() == before  # restored when both left

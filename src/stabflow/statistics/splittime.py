@@ -53,7 +53,7 @@ from scipy import stats
 from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
 from stabflow.dynamics.tables import kernel_args
 from stabflow.statistics.ensemble import Model, advance, record_table, simulate_record
-from stabflow.waves.synthesis import station_wave_table
+from stabflow.waves.synthesis import one_blas_thread, station_wave_table
 from stabflow.statistics.extremes import decluster
 from stabflow.statistics.tail import shape_share
 from stabflow.io import annotate
@@ -301,7 +301,9 @@ def critical_perturbations(model: Model, records, steps, sides, levels, follow: 
         return len(idx)
 
     todo = np.unique(records)
-    with ThreadPoolExecutor(max_workers=max(1, threads)) as ex:
+    # BLAS on one thread for the whole pool, set here in the calling thread: the worker threads'
+    # wave tables then never change the process-wide limit (bit-identical files, any job threads)
+    with one_blas_thread(), ThreadPoolExecutor(max_workers=max(1, threads)) as ex:
         for _ in tqdm(ex.map(one_record, todo), total=len(todo), desc="perturbations (records)",
                       disable=not progress, mininterval=10):
             pass

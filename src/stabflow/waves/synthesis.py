@@ -17,7 +17,9 @@ stays bounded, -> g a / T_i, for short ones.
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import threading
 
 import numpy as np
 
@@ -59,12 +61,35 @@ def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     return out.reshape(len(times), npt, nq)
 
 
+@contextlib.contextmanager
 def one_blas_thread():
     """Context in which BLAS runs on one thread. A BLAS product's rounding depends on how many
     threads share it (OpenBLAS splits the sums differently), so the wave tables would differ in the
     last bits between a job given one thread and one given eight (Snakemake exports the rule's
-    threads to OPENBLAS/OMP_NUM_THREADS): same config and seed must give the same files."""
-    return _blas_controller().limit(limits=1, user_api="blas")
+    threads to OPENBLAS/OMP_NUM_THREADS): same config and seed must give the same files.
+
+    The limit is process-wide, so the context counts its users: the first to enter sets it and the
+    last to leave restores it. (Restoring on every exit let one Python thread of the split-time
+    step lift the limit while another was still in its product: the SLURM and local files differed.)
+    """
+    global _blas_users, _blas_limiter
+    with _blas_lock:
+        if _blas_users == 0:
+            _blas_limiter = _blas_controller().limit(limits=1, user_api="blas")
+        _blas_users += 1
+    try:
+        yield
+    finally:
+        with _blas_lock:
+            _blas_users -= 1
+            if _blas_users == 0:
+                _blas_limiter.restore_original_limits()
+                _blas_limiter = None
+
+
+_blas_lock = threading.Lock()
+_blas_users = 0
+_blas_limiter = None
 
 
 @functools.lru_cache(maxsize=1)
