@@ -292,7 +292,8 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                 calm = calm and float(es["lateral_max"].max()) < 0.5 * acc_lim
 
             def rice(factor):
-                return sum(2 * nu0 * math.exp(-lev**2 / (2 * (factor * sd) ** 2)) if sd > 0 else 0.0
+                # both sides, Rice's formula with the sigma scaled by factor (m2 = (2 pi nu0 sigma)^2)
+                return sum(2 * dsa.rice_rate((factor * sd) ** 2, (2 * math.pi * nu0 * factor * sd) ** 2, lev)
                            for nu0, lev, sd in sides)
 
             bound = rice(scr["sigma_factor"])

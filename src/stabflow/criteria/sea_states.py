@@ -24,6 +24,7 @@ from stabflow.criteria.sgisc import CIRC, SG
 from stabflow.criteria.standards import Standards
 from stabflow.criteria.verdicts import Row, against
 
+
 def crew_height(ship, depth: float) -> tuple[float, str]:
     """Height above the baseline of the highest crew location [m] from the ship config's
     ``criteria.crew_location``, or the weather deck at the centreline amidships (the hull's deck

@@ -359,8 +359,9 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
               "rate": float(d.cell_rate[i]) * 3600.0, "lo": float(d.cell_rate_lo[i]) * 3600.0,
               "hi": float(d.cell_rate_hi[i]) * 3600.0, "share": float(d.share[i]), "sigma": float(d.roll_sigma[i])}
              for i in top]
-    row = {"name": a["row_criterion"], "level": "SGISC direct stability assessment",
-           "value": float(a["row_value"]), "unit": "1/year", "limit": float(a["row_limit"]) if np.isfinite(a["row_limit"]) else None, "sense": "<=", "verdict": a["row_verdict"],
+    limit = float(a["row_limit"])
+    row = {"name": a["row_criterion"], "level": "SGISC direct stability assessment", "value": float(a["row_value"]),
+           "unit": "1/year", "limit": limit if np.isfinite(limit) else None, "sense": "<=", "verdict": a["row_verdict"],
            "reason": a["row_reason"], "source": a["row_source"]}
     return {"row": row, "rate": float(d.rate), "lo": float(d.rate_lo), "hi": float(d.rate_hi), "parts": parts,
             "cells": cells, "n": int(d.sizes["cell"]), "phi_f": float(d.failure_angle),
