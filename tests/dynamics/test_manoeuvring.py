@@ -273,6 +273,78 @@ def test_zigzag_overshoots_of_a_prescribed_heading():
     assert second == pytest.approx(3.0, abs=1e-6)
 
 
+def test_slender_body_derivatives_of_a_flat_plate_are_clarkes_leading_terms():
+    """A plate of constant draft T over L: Y'v = -S, Y'r = S/2, N'v = -S/2, N'r = -S/4 and the added
+    mass -S, 0, 0, -S/12 with S = pi (T/L)^2, the slender-body terms Clarke et al. (1983) regress on."""
+    from stabflow.dynamics.manoeuvring import clarke_derivatives, slender_body_derivatives
+
+    L, T = 60.0, 4.0
+    x = np.linspace(-L / 2, L / 2, 201)
+    d = slender_body_derivatives(x, np.full_like(x, T), L)
+    S = np.pi * (T / L) ** 2
+    exact = {"yv": -S, "yr": S / 2, "nv": -S / 2, "nr": -S / 4, "yvdot": -S, "yrdot": 0.0, "nvdot": 0.0,
+             "nrdot": -S / 12}
+    for k, v in exact.items():
+        # the trapezoidal rule is exact for the linear moments; x^2 over 200 intervals: 5e-5
+        assert d[k] == pytest.approx(v, rel=1e-4 if k == "nrdot" else 1e-12, abs=1e-15), k
+    assert d["x_trailing"] == -L / 2
+    # Clarke's regressions reduce to these terms when B -> 0 and T / L -> 0 in the corrections
+    c = clarke_derivatives(L, 1e-9, T, 0.5)
+    for k in ("yv", "yr", "nr", "yvdot", "nrdot"):
+        assert c[k] == pytest.approx(exact[k], rel=1e-6), k
+
+
+def test_slender_body_derivatives_of_a_deadwood():
+    """Draft T1 forward of midships, a deadwood T2 > T1 from midships to x_d, T0 < T2 aft of it: the
+    trailing edge is x_d; Y_v = -m2, N_v = -(x_d m2 + m2 |x_d| + m1 L / 2) and N_r = -(x_d^2 m2 +
+    m2 (0 - x_d^2) / 2 + m1 L^2 / 8) with m = pi T^2 / 2 (per rho); the hull aft of x_d adds nothing."""
+    from stabflow.dynamics.manoeuvring import slender_body_derivatives
+
+    L, T0, T1, T2, xd = 40.0, 1.0, 3.0, 3.6, -14.0
+    x = np.linspace(-L / 2, L / 2, 40001)
+    draft = np.where(x >= 0.0, T1, np.where(x >= xd, T2, T0))
+    d = slender_body_derivatives(x, draft, L)
+    m1, m2 = np.pi * T1**2 / 2, np.pi * T2**2 / 2
+    assert d["x_trailing"] == pytest.approx(xd, abs=1e-3)
+    assert d["yv"] * 0.5 * L**2 == pytest.approx(-m2, rel=1e-12)
+    assert d["yr"] * 0.5 * L**3 == pytest.approx(-xd * m2, rel=1e-4)
+    assert d["nv"] * 0.5 * L**3 == pytest.approx(-(xd * m2 - xd * m2 + m1 * L / 2), rel=1e-3)
+    assert d["nr"] * 0.5 * L**4 == pytest.approx(-(xd**2 * m2 - m2 * xd**2 / 2 + m1 * L**2 / 8), rel=1e-3)
+    # a shallower stern changes nothing aft of the trailing edge
+    d0 = slender_body_derivatives(x, np.where(x < xd, 0.1, draft), L)
+    for k in ("yv", "yr", "nv", "nr"):
+        assert d0[k] == pytest.approx(d[k], rel=1e-12), k
+
+
+def test_trawler_hull_derivatives_from_its_profile_make_it_course_stable(trawler):
+    """With Clarke's regression the deep trawler is directionally unstable (open-loop sway-yaw
+    eigenvalue > 0: the 10/10 zig-zag never comes back); slender-body theory on its lateral profile,
+    whose deadwood ends at x = -8.7 m, gives a stable hull that completes the zig-zag."""
+    from stabflow.dynamics.manoeuvres import zigzag_overshoots
+    from stabflow.dynamics.manoeuvring import _linear_system, sway_yaw_eigenvalues
+
+    lam, over = {}, {}
+    for hull in ("clarke", "slender_body"):
+        model = six_dof(trawler, heading=0.0, hull=hull, autopilot=Autopilot(mode="zigzag", rudder_deg=10.0))
+        lam[hull] = float(np.max(sway_yaw_eigenvalues(model).real))
+        # the heading-frame block (y', psi, r) has these two and the neutral course change, 0
+        A, _, _ = _linear_system(model)
+        i = [K.S_RATE + K.S_Y, K.S_YAW, K.S_RATE + K.S_YAW]
+        e3 = np.sort_complex(np.linalg.eigvals(A[np.ix_(i, i)]))
+        e2 = np.sort_complex(np.concatenate([sway_yaw_eigenvalues(model), [0.0]]))
+        np.testing.assert_allclose(e3, e2, atol=1e-5)
+        over[hull] = zigzag_overshoots(simulate_six_dof(model, ([], [], []), 150.0, 0.05), 10.0)
+    assert -9.0 < model.derivatives["x_trailing"] < -8.0
+    assert lam["clarke"] > 0.05 and np.isnan(over["clarke"]).any()
+    assert lam["slender_body"] < -0.05
+    assert all(0.0 < o < 10.0 for o in over["slender_body"]), over
+
+
+def test_unknown_hull_derivatives_are_an_error(trawler):
+    with pytest.raises(StabflowError, match="hull derivatives 'lamp'"):
+        six_dof(trawler, hull="lamp")
+
+
 def test_record_events():
     """Broach needs the deviation and the rudder at its stop; surf-riding needs the lock to last."""
     from stabflow.dynamics.manoeuvres import record_events

@@ -54,7 +54,8 @@ def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg
     else:
         added = np.array([[am["a11"], 0.0, 0.0], [0.0, am["a22"], am["a26"]], [0.0, am["a26"], am["a66"]]])
     der = {k: v for k, v in cfg.get("derivatives", {}).items() if k != "source"}
-    return Manoeuvring(foils=foils, autopilot=autopilot, derivatives=der, form_factor=cfg.get("form_factor", 0.0),
+    return Manoeuvring(foils=foils, autopilot=autopilot, derivatives=der, hull=cfg.get("hull_derivatives", "clarke"),
+                       form_factor=cfg.get("form_factor", 0.0),
                        side_force_height=cfg.get("side_force_height"), added_mass=added)
 
 
@@ -186,15 +187,23 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
             out[f"turning_{int(helm)}_{k}"] = v
         tracks[f"turning circle, rudder {helm:g}°"] = trajectory(ds)
     from stabflow.dynamics import _kernels_6dof as K6
-    from stabflow.dynamics.manoeuvring import _linear_system
+    from stabflow.dynamics.manoeuvring import hull_derivative_sets, sway_yaw_eigenvalues, with_hull_derivatives
 
     rudder = bool(np.any(model.foils[:, K6.F_RUDDER] != 0.0)) if len(model.foils) else False
     no_rudder = "the ship's manoeuvring section has no rudder foil: the autopilot cannot steer"
-    # open-loop directional stability: the sway-yaw block (y', psi, psi') of the linear system
-    A, _, _ = _linear_system(model)
-    idx = [K.S_RATE + K.S_Y, K.S_YAW, K.S_RATE + K.S_YAW]
-    lam_max = float(np.max(np.linalg.eigvals(A[np.ix_(idx, idx)]).real))
+
+    def sway_yaw_eigenvalue(mod):  # open-loop directional stability: the largest real part
+        return float(np.max(sway_yaw_eigenvalues(mod).real))
+
+    lam_max = sway_yaw_eigenvalue(model)
     out["sway_yaw_eigenvalue"] = lam_max
+    for k in ("yv", "yr", "nv", "nr"):
+        out[f"derivative_{k}"] = float(model.derivatives[k])
+    # both sources of hull derivatives side by side (the report's table), each with its eigenvalue
+    for name, der in hull_derivative_sets(section_parameters(model.sec, _statics(ship))).items():
+        for k in ("yv", "yr", "nv", "nr"):
+            out[f"{name}_{k}"] = float(der[k])
+        out[f"sway_yaw_eigenvalue_{name}"] = sway_yaw_eigenvalue(with_hull_derivatives(model, der))
     for z in (10.0, 20.0):
         ds = simulate_six_dof(replace(model, m=_steer(model, "zigzag", z, z)), calm, mc["zigzag_s"], dt)
         first, second = zigzag_overshoots(ds, z)
@@ -320,6 +329,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
     ds["surf_riding_six_dof"] = ("surf_case", thr[:, 2])
     ds["surf_riding_melnikov_wave_force"] = ("surf_case", thr[:, 3])
     ds.attrs.update(manoeuvre_length=L, manoeuvre_speed=model.speed,
+                    hull_derivatives=str(ship.data.get("manoeuvring", {}).get("hull_derivatives", "clarke")),
                     manoeuvre_breadth=float(particulars(section_parameters(model.sec, _statics(ship))).breadth))
     return ds, rows, tracks, zigzags
 

@@ -9,7 +9,8 @@ instantaneous positions, and the forces a free course needs:
   wetted surface S_w = L (1.7 d + C_B B) (ITTC roll-damping procedure eq 40), and a constant thrust
   equal to the resistance at the commanded speed, so that the commanded speed holds in calm water;
 * linear hull manoeuvring forces Y = u (Y_v v + Y_r r), N = u (N_v v + N_r r) about midships, from
-  Clarke, Gedling & Hine (1983) unless given (:func:`clarke_derivatives`), acting at a height
+  Clarke, Gedling & Hine (1983) (:func:`clarke_derivatives`) or slender-body theory on the hull's
+  lateral profile (:func:`slender_body_derivatives`), unless given, acting at a height
   ``side_force_height`` above the keel for the roll moment, and the inertia of the horizontal
   added mass of (u, v, r) in body axes: given (e.g. Capytaine's zero-frequency limit,
   :func:`stabflow.dynamics.hydro.manoeuvring_added_mass`) or from the same regression; the
@@ -92,6 +93,67 @@ def clarke_derivatives(length: float, breadth: float, draft: float, cb: float) -
     }
 
 
+def slender_body_derivatives(x, draft, length: float) -> dict[str, float]:
+    """Linear manoeuvring derivatives of the hull's own lateral profile by slender-body theory, in
+    Clarke's prime system (:func:`clarke_derivatives`), about x = 0.
+
+    Each station of draft T(x) carries the sway added mass of a vertical flat plate reflected in the
+    free surface, m(x) = rho pi T^2 / 2 per unit length (a plate of span 2 T in unbounded fluid has
+    rho pi T^2; half of it is below the surface). Moving at U with the local lateral velocity
+    w = v + x r, a strip of water passing the hull from bow to stern takes the momentum m w, so the
+    steady force per unit length is f = U d(m w)/dx. The flow is taken to leave the hull where the
+    profile stops deepening: m is replaced by its running maximum from the bow, and the hull ends at
+    the (aftmost) deepest station x_T, the trailing edge, behind which the wake carries the shed
+    momentum and the hull takes no force (a rudder or skeg aft of it is a foil). Integrating,
+
+        Y_v = -U m(x_T),   Y_r = -U x_T m(x_T),
+        N_v = -U (x_T m(x_T) + int m~ dx),   N_r = -U (x_T^2 m(x_T) + int m~ x dx),
+
+    the integrals over [x_T, bow]. For a plate of constant draft T over the length L these are the
+    leading terms of Clarke, Gedling & Hine's regressions, -S, S/2, -S/2 and -S/4 with
+    S = pi (T / L)^2 (tested); a deadwood or a keel raked aft moves the trailing edge's lift aft and
+    makes the hull more stable, which those regressions on L, B, T and C_B cannot see. Viscous lift
+    beyond this is the cross-flow drag (nonlinear) of :func:`build_six_dof`.
+
+    The added-mass derivatives are the strip sums over the whole hull, -int m (1, x, x, x^2) dx.
+
+    Parameters
+    ----------
+    x : array
+        Station positions [m, + forward].
+    draft : array
+        Station drafts [m] (0 where the station is out of the water).
+    length : float
+        Reference length L [m] of the prime system.
+
+    Returns
+    -------
+    dict
+        ``yv, yr, nv, nr, yvdot, yrdot, nvdot, nrdot`` as :func:`clarke_derivatives`, and the trailing
+        edge ``x_trailing`` [m].
+    """
+    x = np.asarray(x, float)
+    o = np.argsort(x)
+    x, a = x[o], 0.5 * np.pi * np.asarray(draft, float)[o] ** 2  # added mass / rho [m^2]
+    if not np.any(a > 0.0):
+        raise StabflowError("slender-body derivatives: no station has a draft")
+    run = np.maximum.accumulate(a[::-1])[::-1]  # running maximum from the bow aft
+    it = int(np.flatnonzero(a == a.max())[0])   # the aftmost deepest station: the trailing edge
+    xs, ms = x[it:], run[it:]
+    xt, mt = float(x[it]), float(a[it])
+    L = float(length)
+    m0, m1 = np.trapezoid(ms, xs), np.trapezoid(ms * xs, xs)
+    w0, w1, w2 = np.trapezoid(a, x), np.trapezoid(a * x, x), np.trapezoid(a * x * x, x)
+    return {"yv": -mt / (0.5 * L**2), "yr": -xt * mt / (0.5 * L**3),
+            "nv": -(xt * mt + m0) / (0.5 * L**3), "nr": -(xt**2 * mt + m1) / (0.5 * L**4),
+            "yvdot": -w0 / (0.5 * L**3), "yrdot": -w1 / (0.5 * L**4), "nvdot": -w1 / (0.5 * L**4),
+            "nrdot": -w2 / (0.5 * L**5), "x_trailing": xt}
+
+
+#: the sources of the hull derivatives (``Manoeuvring.hull``)
+HULL_DERIVATIVES = ("clarke", "slender_body")
+
+
 def ittc57_friction(reynolds) -> np.ndarray:
     """Frictional resistance coefficient C_F = 0.075 / (log10 Re - 2)^2 (ITTC 1957 line)."""
     return 0.075 / (np.log10(np.asarray(reynolds, float)) - 2.0) ** 2
@@ -153,7 +215,10 @@ class Autopilot:
 class Manoeuvring:
     """The 6-DOF additions for one ship and condition (see the module docstring).
 
-    ``derivatives`` overrides Clarke's prime-system values by name; ``form_factor`` k of the
+    ``hull`` names where the linear hull derivatives come from: ``"clarke"`` (the regression,
+    :func:`clarke_derivatives`) or ``"slender_body"`` (the hull's own lateral profile,
+    :func:`slender_body_derivatives`); ``derivatives`` overrides their prime-system values by name;
+    ``form_factor`` k of the
     resistance [-] (0: the friction line alone); ``side_force_height`` [m above the keel] where the
     hull side force acts (None: half the draft, the centre of a rectangular lateral area);
     ``added_mass`` (3, 3) of (surge, sway, yaw) about G in body axes [kg, kg m, kg m^2], or None for
@@ -163,6 +228,7 @@ class Manoeuvring:
     foils: tuple = ()
     autopilot: Autopilot = field(default_factory=Autopilot)
     derivatives: dict = field(default_factory=dict)
+    hull: str = "clarke"
     form_factor: float = 0.0
     side_force_height: float | None = None
     added_mass: np.ndarray | None = None
@@ -196,16 +262,14 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     sp = section_parameters(sec, st)
     hp = particulars(sp)
     L, B, T = hp.length, hp.breadth, hp.draft
-    der = clarke_derivatives(L, B, T, hp.cb) | dict(man.derivatives)
+    if man.hull not in HULL_DERIVATIVES:
+        raise StabflowError(f"manoeuvring: hull derivatives {man.hull!r} are not one of {list(HULL_DERIVATIVES)}")
+    der = hull_derivative_sets(sp)[man.hull] | dict(man.derivatives)
     q = 0.5 * rho
     p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
     m = np.zeros(K6.N_M)
     m[K6.M_SPEED] = speed
-    # dimensional hull derivatives per unit surge velocity (prime system times 1/2 rho L^n)
-    m[K6.M_YV] = q * L**2 * der["yv"]
-    m[K6.M_YR] = q * L**3 * der["yr"]
-    m[K6.M_NV] = q * L**3 * der["nv"]
-    m[K6.M_NR] = q * L**4 * der["nr"]
+    _set_hull_derivatives(m, der, rho, L)
     zh = 0.5 * T if man.side_force_height is None else float(man.side_force_height)
     m[K6.M_ZH] = zh - kg
     s_w, _ = friction_radius_area(L, B, T, hp.cb, hp.og)  # ITTC eq 40
@@ -233,11 +297,12 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
         ab[1, 2] = -q * L**4 * der["yrdot"]
         ab[2, 1] = -q * L**4 * der["nvdot"]
         ab[2, 2] = -q * L**5 * der["nrdot"]
-        # Clarke's derivatives are about midships: velocities there are (u, v - x_G r, r)
+        # the derivatives are about midships: velocities there are (u, v - x_G r, r)
         H = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, -lcg], [0.0, 0.0, 1.0]])
         ab = H.T @ ab @ H
-        src = (f"Clarke et al. (1983) regression at B/L {B / L:.3f}, B/T {B / T:.2f}, C_B {hp.cb:.3f}: give the added "
-               "mass (e.g. Capytaine's zero-frequency limit, stabflow.dynamics.hydro.manoeuvring_added_mass)")
+        src = ((f"Clarke et al. (1983) regression at B/L {B / L:.3f}, B/T {B / T:.2f}, C_B {hp.cb:.3f}"
+                if man.hull == "clarke" else "the slender-body strip sums") + ": give the added mass (e.g. "
+               "Capytaine's zero-frequency limit, stabflow.dynamics.hydro.manoeuvring_added_mass)")
     else:
         ab = np.asarray(man.added_mass, float).reshape(3, 3)
         src = "the given added mass"
@@ -261,6 +326,35 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     s0[K6.S_HELM] = 1.0
     s0[K6.S_PSI_PREV] = s0[K.S_YAW]
     return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der)
+
+
+def hull_derivative_sets(sp: xr.Dataset) -> dict[str, dict]:
+    """Both sets of prime-system hull derivatives (:data:`HULL_DERIVATIVES`) of a hull from its
+    section parameters (:func:`stabflow.dynamics.roll_damping.section_parameters`)."""
+    hp = particulars(sp)
+    return {"clarke": clarke_derivatives(hp.length, hp.breadth, hp.draft, hp.cb),
+            "slender_body": slender_body_derivatives(sp["x"].values, np.where(sp["valid"].values, sp["draft"].values, 0.0),
+                                                     hp.length)}
+
+
+def _set_hull_derivatives(m: np.ndarray, der: dict, rho: float, length: float) -> None:
+    """Write the dimensional hull derivatives per unit surge velocity (prime values times
+    1/2 rho L^n) into the kernel's ``m``."""
+    q, L = 0.5 * rho, length
+    m[K6.M_YV] = q * L**2 * der["yv"]
+    m[K6.M_YR] = q * L**3 * der["yr"]
+    m[K6.M_NV] = q * L**3 * der["nv"]
+    m[K6.M_NR] = q * L**4 * der["nr"]
+
+
+def with_hull_derivatives(model: SixDof, der: dict) -> SixDof:
+    """The ``model`` with other linear hull derivatives (prime system, keys ``yv, yr, nv, nr``); its
+    added mass is kept."""
+    from dataclasses import replace
+
+    m = model.m.copy()
+    _set_hull_derivatives(m, der, float(model.p[K.P_RHO]), model.length)
+    return replace(model, m=m, derivatives=dict(der))
 
 
 def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,
@@ -419,6 +513,19 @@ def _linear_system(model: SixDof, eps: float = 1e-6):
         A[:, j] = (rhs(sp, 0.0) - rhs(sm, 0.0)) / (2 * eps)
     B = (rhs(s0, eps) - rhs(s0, -eps)) / (2 * eps)
     return A, B, rhs
+
+
+def sway_yaw_eigenvalues(model: SixDof) -> np.ndarray:
+    """The two eigenvalues [1/s] of the open-loop sway-yaw motion (rudder fixed) about the calm-water
+    straight run: the linear system in the heading-frame sway velocity y', the heading psi and the
+    yaw rate r, rewritten in the body sway velocity v = y' - U psi (the loads depend on psi only
+    through v), which removes the neutral mode of a course change. A positive real part is a
+    directionally unstable hull."""
+    A, _, _ = _linear_system(model)
+    i = [K.S_RATE + K.S_Y, K.S_YAW, K.S_RATE + K.S_YAW]
+    a = A[np.ix_(i, i)]
+    U = model.speed
+    return np.linalg.eigvals(np.array([[a[0, 0], a[0, 2] - U], [a[2, 0], a[2, 2]]]))
 
 
 def _closed_loop(model: SixDof, A, B) -> np.ndarray:

@@ -453,9 +453,23 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
     mcfg = sh.data.get("manoeuvring", {})
     foils = [{**f, "name": f.get("name", "foil"), "source": f.get("source", "source not given")} for f in mcfg.get("foils", [])]
     given = {k: v for k, v in mcfg.get("derivatives", {}).items() if k != "source"}
+    hull_src = {"clarke": "Clarke, Gedling & Hine (1983), a regression of model tests on L, B, T and C_B",
+                "slender_body": "slender-body theory on this hull's own lateral profile (its deadwood, keel rake "
+                                "and trim; the flow leaves at the deepest aft station)"}
+    hull_der = str(mcfg.get("hull_derivatives", "clarke"))
     derivatives = (f"given {', '.join(sorted(given))} ({mcfg['derivatives'].get('source', 'source not given')}), the rest "
-                   if given else "") + "Clarke, Gedling & Hine (1983)"
+                   if given else "") + hull_src[hull_der]
+    der_rows = [[{"clarke": "Clarke et al. (1983)", "slender_body": "slender body, hull profile"}[k]
+                 + (" (used)" if k == hull_der and not given else "")]
+                + [f"{float(d[f'{k}_{c}']):.4f}" for c in ("yv", "yr", "nv", "nr")]
+                + [f"{float(d[f'sway_yaw_eigenvalue_{k}']):+.3f}"]
+                for k in ("clarke", "slender_body") if f"{k}_yv" in d]
+    if given and "derivative_yv" in d:
+        der_rows.append(["used (with the given values)"] + [f"{float(d[f'derivative_{c}']):.4f}"
+                                                            for c in ("yv", "yr", "nv", "nr")]
+                        + [f"{float(d['sway_yaw_eigenvalue']):+.3f}"])
     return _render("broaching.md.j2", ship=ship, a=config["broaching"], rows=rows, foils=foils, derivatives=derivatives,
+                   der_rows=der_rows,
                    man={"rows": man_rows, "length": L, "b_l": float(d.attrs.get("manoeuvre_breadth", np.nan)) / L,
                         "form_factor": float(mcfg.get("form_factor", 0.0)), "ap": mcfg.get("autopilot", {}),
                         "eig": float(d["sway_yaw_eigenvalue"]) if "sway_yaw_eigenvalue" in d else np.nan,
