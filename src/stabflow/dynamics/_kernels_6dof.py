@@ -73,12 +73,11 @@ STEER_AUTOPILOT = 1.0
 STEER_ZIGZAG = 2.0
 
 # state: the 3-DOF state, the rudder angle delta [rad] (positive: trailing edge to starboard,
-# turning the ship to starboard, psi decreasing), the sign of the zig-zag helm and the yaw at the
-# previous step (eq 30's derivative), held within a step like the roll amplitude
+# turning the ship to starboard, psi decreasing), integrated with the motions, and the sign of the
+# zig-zag helm, held within a step like the roll amplitude
 S_RUDDER = N_STATE
 S_HELM = N_STATE + 1
-S_PSI_PREV = N_STATE + 2
-N_STATE6 = N_STATE + 3
+N_STATE6 = N_STATE + 2
 
 # record status
 OK = 0
@@ -281,38 +280,57 @@ def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, d
 
 
 @njit(cache=True)
-def _rudder_step(m, psi, psi_prev, delta0, dt, helm):
-    """Rudder angle after one step and the zig-zag helm sign. The command: a constant (fixed mode),
-    the autopilot of paper 004 eq 30, delta_c = G_a (psi - psi_d) + G_b (psi - psi_0) / dt, or the
-    zig-zag helm (+-M_HELM, reversed when the heading passes -+M_ZIGZAG). The servo (eqs 31-34):
-    tau delta' + delta = delta_c solved exactly over the step with the command held (eq 32), the
-    increment limited by the slew rate (eq 33) and the angle by its maximum (eq 34)."""
+def _helm(m, psi, helm):
+    """The zig-zag helm sign after a step: positive helm turns to starboard (psi decreasing) until
+    psi <= -M_ZIGZAG, then reverses, and back when psi >= M_ZIGZAG (other modes: unchanged)."""
+    if m[M_STEERING] == STEER_ZIGZAG:
+        if helm > 0.0 and psi <= -m[M_ZIGZAG]:
+            return -1.0
+        if helm < 0.0 and psi >= m[M_ZIGZAG]:
+            return 1.0
+    return helm
+
+
+@njit(cache=True)
+def _rudder_rate(m, s, helm):
+    """Rudder rate [rad/s] of the steering gear in state ``s``. The command: a constant (fixed
+    mode), the PD autopilot of paper 004 eq 30, delta_c = G_a (psi - psi_d) + G_b psi', or the
+    zig-zag helm +-M_HELM. The servo (eqs 31-34): tau delta' + delta = delta_c, the rate limited
+    to the slew rate R_m (eq 33) and zero at the stop A_m when it pushes beyond (eq 34).
+
+    Paper 004 writes eq 30's derivative as (psi - psi_0) / dt with psi_0 at the previous time step
+    and solves eq 31 over a step with the command held (eq 32): both are first order in the step.
+    Their limit dt -> 0, written here, is integrated with the motions by RK4, so that the records
+    converge with the step (the closed loop of ``linearised_course_change`` is the same)."""
     mode = m[M_STEERING]
     if mode == STEER_AUTOPILOT:
-        err = psi - m[M_PSID]
+        err = s[S_YAW] - m[M_PSID]
         err -= 2.0 * math.pi * math.floor((err + math.pi) / (2.0 * math.pi))  # to [-pi, pi)
-        dc = m[M_GA] * err + m[M_GB] * (psi - psi_prev) / dt
+        dc = m[M_GA] * err + m[M_GB] * s[S_RATE + S_YAW]
     elif mode == STEER_ZIGZAG:
-        # positive helm turns to starboard (psi decreasing) until psi <= -psi_z, then reverses
-        if helm > 0.0 and psi <= -m[M_ZIGZAG]:
-            helm = -1.0
-        elif helm < 0.0 and psi >= m[M_ZIGZAG]:
-            helm = 1.0
         dc = helm * m[M_HELM]
     else:
         dc = m[M_HELM]
-    inc = (1.0 - math.exp(-dt / m[M_TAU])) * (dc - delta0)
-    lim = m[M_SLEW] * dt
-    inc = min(max(inc, -lim), lim)
-    return min(max(delta0 + inc, -m[M_MAX]), m[M_MAX]), helm
+    d = s[S_RUDDER]
+    rate = min(max((dc - d) / m[M_TAU], -m[M_SLEW]), m[M_SLEW])
+    if (d >= m[M_MAX] and rate > 0.0) or (d <= -m[M_MAX] and rate < 0.0):
+        return 0.0
+    return rate
+
+
+@njit(cache=True, inline="always")
+def _stop(m, d):
+    """The rudder angle held within +-A_m (eq 34)."""
+    return min(max(d, -m[M_MAX]), m[M_MAX])
 
 
 @njit(cache=True, nogil=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6,); ``ltab`` (2 nsteps + 1, npoints, 3)
-    the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle moves once per step (``_rudder_step``,
-    linear in time within the step; its rate is zero in the RK4 stages). ``out`` (nsteps + 1, N_STATE6) receives the states. Returns
-    (index of the last step done, status: OK, CAPSIZED (|roll| > phi_cap) or LEFT_TABLE)."""
+    the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle is a state of the
+    RK4 with the rate of ``_rudder_rate``; the zig-zag helm switches at the steps. ``out``
+    (nsteps + 1, N_STATE6) receives the states. Returns (index of the last step done, status: OK,
+    CAPSIZED (|roll| > phi_cap) or LEFT_TABLE)."""
     ns = N_STATE6
     s = np.empty(ns)
     k1 = np.empty(ns)
@@ -331,24 +349,30 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
         out[0, q] = s0[q]
     for n in range(nsteps):
         j = 2 * n
-        d0 = s[S_RUDDER]
-        d1, s[S_HELM] = _rudder_step(m, s[S_YAW], s[S_PSI_PREV], d0, dt, s[S_HELM])
-        dm = 0.5 * (d0 + d1)
-        s[S_PSI_PREV] = s[S_YAW]
-        ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, d0, k1, f, wave, work, mq, r)
+        helm = _helm(m, s[S_YAW], s[S_HELM])
+        s[S_HELM] = helm
+        ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, s[S_RUDDER], k1, f, wave, work,
+                   mq, r)
+        k1[S_RUDDER] = _rudder_rate(m, s, helm)
         for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k1[q]
-        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, dm, k2, f, wave, work, mq, r)
+        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, _stop(m, tmp[S_RUDDER]), k2,
+                    f, wave, work, mq, r)
+        k2[S_RUDDER] = _rudder_rate(m, tmp, helm)
         for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k2[q]
-        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, dm, k3, f, wave, work, mq, r)
+        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, _stop(m, tmp[S_RUDDER]), k3,
+                    f, wave, work, mq, r)
+        k3[S_RUDDER] = _rudder_rate(m, tmp, helm)
         for q in range(ns):
             tmp[q] = s[q] + dt * k3[q]
-        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 2], tmp, d1, k4, f, wave, work, mq, r)
+        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 2], tmp, _stop(m, tmp[S_RUDDER]), k4,
+                    f, wave, work, mq, r)
+        k4[S_RUDDER] = _rudder_rate(m, tmp, helm)
         prev = s[S_ROLL]
         for q in range(ns):
             s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
-        s[S_RUDDER] = d1
+        s[S_RUDDER] = _stop(m, s[S_RUDDER])
         _update_amplitude(prev, s)
         for q in range(ns):
             out[n + 1, q] = s[q]

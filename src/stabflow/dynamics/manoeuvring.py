@@ -103,7 +103,8 @@ def slender_body_derivatives(x, draft, length: float) -> dict[str, float]:
     w = v + x r, a strip of water passing the hull from bow to stern takes the momentum m w, so the
     steady force per unit length is f = U d(m w)/dx. The flow is taken to leave the hull where the
     profile stops deepening: m is replaced by its running maximum from the bow, and the hull ends at
-    the (aftmost) deepest station x_T, the trailing edge, behind which the wake carries the shed
+    the (aftmost) deepest station x_T, which must lie aft of midships (a profile whose deepest point
+    is a bow bulb or a sonar dome is refused), the trailing edge, behind which the wake carries the shed
     momentum and the hull takes no force (a rudder or skeg aft of it is a foil). Integrating,
 
         Y_v = -U m(x_T),   Y_r = -U x_T m(x_T),
@@ -139,6 +140,10 @@ def slender_body_derivatives(x, draft, length: float) -> dict[str, float]:
         raise StabflowError("slender-body derivatives: no station has a draft")
     run = np.maximum.accumulate(a[::-1])[::-1]  # running maximum from the bow aft
     it = int(np.flatnonzero(a == a.max())[0])   # the aftmost deepest station: the trailing edge
+    if x[it] > 0.0:
+        raise StabflowError(f"slender-body derivatives: the deepest station is forward of midships (x = {x[it]:.2f} m; "
+                            "a bulb or a sonar dome deeper than the aft body?), where the flow would leave the hull: "
+                            "use the clarke derivatives or give them in manoeuvring.derivatives")
     xs, ms = x[it:], run[it:]
     xt, mt = float(x[it]), float(a[it])
     L = float(length)
@@ -264,7 +269,10 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     L, B, T = hp.length, hp.breadth, hp.draft
     if man.hull not in HULL_DERIVATIVES:
         raise StabflowError(f"manoeuvring: hull derivatives {man.hull!r} are not one of {list(HULL_DERIVATIVES)}")
-    der = hull_derivative_sets(sp)[man.hull] | dict(man.derivatives)
+    der = hull_derivative_sets(sp)[man.hull]
+    if isinstance(der, str):
+        raise StabflowError(f"manoeuvring: {der}")
+    der = der | dict(man.derivatives)
     q = 0.5 * rho
     p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
     m = np.zeros(K6.N_M)
@@ -324,17 +332,21 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     s0 = np.zeros(K6.N_STATE6)
     s0[:K.N_STATE] = initial_state(sec, st)
     s0[K6.S_HELM] = 1.0
-    s0[K6.S_PSI_PREV] = s0[K.S_YAW]
     return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der)
 
 
-def hull_derivative_sets(sp: xr.Dataset) -> dict[str, dict]:
+def hull_derivative_sets(sp: xr.Dataset) -> dict[str, dict | str]:
     """Both sets of prime-system hull derivatives (:data:`HULL_DERIVATIVES`) of a hull from its
-    section parameters (:func:`stabflow.dynamics.roll_damping.section_parameters`)."""
+    section parameters (:func:`stabflow.dynamics.roll_damping.section_parameters`); a set that
+    cannot be had for this hull is the reason why (a string)."""
     hp = particulars(sp)
-    return {"clarke": clarke_derivatives(hp.length, hp.breadth, hp.draft, hp.cb),
-            "slender_body": slender_body_derivatives(sp["x"].values, np.where(sp["valid"].values, sp["draft"].values, 0.0),
-                                                     hp.length)}
+    out = {"clarke": clarke_derivatives(hp.length, hp.breadth, hp.draft, hp.cb)}
+    try:
+        out["slender_body"] = slender_body_derivatives(sp["x"].values,
+                                                       np.where(sp["valid"].values, sp["draft"].values, 0.0), hp.length)
+    except StabflowError as e:
+        out["slender_body"] = str(e)
+    return out
 
 
 def _set_hull_derivatives(m: np.ndarray, der: dict, rho: float, length: float) -> None:
