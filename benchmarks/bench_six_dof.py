@@ -78,8 +78,12 @@ def main(argv=None):
               f"{float(ds['roll'].std()):7.3f} deg, yaw sigma {float(ds['yaw'].std()):7.3f} deg, max |roll| "
               f"{float(np.abs(ds['roll']).max()):7.2f} deg, status {ds.attrs['status']}")
     ok = [dt for dt, e in errs.items() if e <= 0.01]
-    conv = max(ok) if ok else 0.0125
-    print(f"  converged step (trajectory within 1 % over the first {ap_h:g} s): {conv:g} s")
+    if ok:
+        conv = max(ok)
+        print(f"  converged step (trajectory within 1 % over the first {ap_h:g} s): {conv:g} s")
+    else:
+        conv = 0.0125
+        print(f"  NOT CONVERGED: no step within 1 % over the first {ap_h:g} s; timing at {conv:g} s")
     for dt in sorted({conv, 0.5}):
         t0 = time.process_time()
         simulate_six_dof(model, waves, a.seconds, dt)

@@ -213,7 +213,7 @@ def test_records_converge_with_the_step(trawler):
         err[dt] = max(float(np.max(np.abs(ds[v].values - ref[v].sel(time=ds.time).values)))
                       / float(np.max(np.abs(ref[v]))) for v in ("roll", "yaw"))
     assert err[0.05] < 1e-3 and err[0.025] < 3e-4, err
-    assert err[0.05] / err[0.025] > 3.0, err
+    assert err[0.05] / err[0.025] > 2.5, err  # first order: 2
 
 
 def test_resistance_and_thrust_hold_the_commanded_speed(trawler):
@@ -231,15 +231,15 @@ def test_resistance_and_thrust_hold_the_commanded_speed(trawler):
 def test_rudder_turns_the_ship_to_starboard_and_the_autopilot_recovers_a_step(trawler):
     """Positive rudder (trailing edge to starboard) turns to starboard (yaw decreasing); the PD
     autopilot of paper 004 takes a 10 degree course change with no more overshoot than the linear
-    theory of the same equations with the same gains (measured 0.002 degree against 0.021: the slew
-    limit damps the large step) and settles within 0.1 degree; for a 1 degree change, within the
-    linear theory's 5 % (both are linear there)."""
+    theory of the same equations with the same gains (measured 0.011 degree against 0.021: the slew
+    limit damps the large step) and settles within 0.1 degree; for a 1 degree change, within 0.5 %
+    of the step from the linear theory (both are linear there; measured 0.02 %)."""
     from stabflow.dynamics.manoeuvring import linearised_course_change
 
     model = six_dof(trawler, autopilot=Autopilot(mode="fixed", rudder_deg=10.0))
     ds = simulate_six_dof(model, ([], [], []), 20.0, 0.05)
     assert float(ds["yaw"][-1]) < -5.0
-    for step, tol in ((10.0, None), (1.0, 0.05)):
+    for step, tol in ((10.0, None), (1.0, 0.005)):
         model = six_dof(trawler, autopilot=Autopilot(heading_deg=step))
         ds = simulate_six_dof(model, ([], [], []), 180.0, 0.05)
         yaw = ds["yaw"].values
@@ -308,56 +308,63 @@ def test_zigzag_overshoots_of_a_prescribed_heading():
     assert second == pytest.approx(3.0, abs=1e-6)
 
 
+def _slabs(L, n):
+    """Station centres and widths of n equal slabs over [-L/2, L/2] (as :class:`Sections`)."""
+    dx = L / n
+    return -L / 2 + (np.arange(n) + 0.5) * dx, np.full(n, dx)
+
+
 def test_slender_body_derivatives_of_a_flat_plate_are_clarkes_leading_terms():
-    """A plate of constant draft T over L: Y'v = -S, Y'r = S/2, N'v = -S/2, N'r = -S/4 and the added
-    mass -S, 0, 0, -S/12 with S = pi (T/L)^2, the slender-body terms Clarke et al. (1983) regress on."""
+    """A plate of constant draft T over L: Y'v = -S, Y'r = S/2, N'v = -S/2, N'r = -S/4 with
+    S = pi (T/L)^2, the slender-body terms of Clarke et al. (1983)'s regressions (which reduce to them
+    as B -> 0); the trailing edge is the stern; a level keel with its last digits disturbed, or
+    trimmed by 1e-6 rad either way, gives the same."""
     from stabflow.dynamics.manoeuvring import clarke_derivatives, slender_body_derivatives
 
     L, T = 60.0, 4.0
-    x = np.linspace(-L / 2, L / 2, 201)
-    d = slender_body_derivatives(x, np.full_like(x, T), L)
+    x, dx = _slabs(L, 40)
     S = np.pi * (T / L) ** 2
-    exact = {"yv": -S, "yr": S / 2, "nv": -S / 2, "nr": -S / 4, "yvdot": -S, "yrdot": 0.0, "nvdot": 0.0,
-             "nrdot": -S / 12}
-    for k, v in exact.items():
-        # the trapezoidal rule is exact for the linear moments; x^2 over 200 intervals: 5e-5
-        assert d[k] == pytest.approx(v, rel=1e-4 if k == "nrdot" else 1e-12, abs=1e-15), k
-    assert d["x_trailing"] == -L / 2
-    # Clarke's regressions reduce to these terms when B -> 0 and T / L -> 0 in the corrections
-    c = clarke_derivatives(L, 1e-9, T, 0.5)
-    for k in ("yv", "yr", "nr", "yvdot", "nrdot"):
-        assert c[k] == pytest.approx(exact[k], rel=1e-6), k
+    exact = {"yv": -S, "yr": S / 2, "nv": -S / 2, "nr": -S / 4}
+    c = clarke_derivatives(L, 1e-12, T, 0.5)
+    for draft in (np.full_like(x, T), T * (1 + 1e-6 * np.sin(7 * x)), T + 1e-6 * x, T - 1e-6 * x):
+        d = slender_body_derivatives(x, draft, dx, L)
+        assert d["x_trailing"] == pytest.approx(-L / 2, abs=1e-12)
+        for k, v in exact.items():
+            assert d[k] == pytest.approx(v, rel=1e-4, abs=1e-12), k
+            if k != "nv":  # Clarke's N'v carries 2.4 T / L beside the 1/2
+                assert c[k] == pytest.approx(v, rel=1e-9), k
 
 
 def test_slender_body_derivatives_of_a_deadwood():
     """Draft T1 forward of midships, a deadwood T2 > T1 from midships to x_d, T0 < T2 aft of it: the
-    trailing edge is x_d; Y_v = -m2, N_v = -(x_d m2 + m2 |x_d| + m1 L / 2) and N_r = -(x_d^2 m2 +
-    m2 (0 - x_d^2) / 2 + m1 L^2 / 8) with m = pi T^2 / 2 (per rho); the hull aft of x_d adds nothing."""
+    trailing edge is x_d; Y_v = -m2, Y_r = -x_d m2, N_v = -(x_d m2 + m2 |x_d| + m1 L / 2) and
+    N_r = -(x_d^2 m2 - m2 x_d^2 / 2 + m1 L^2 / 8) with m = pi T^2 / 2 (per rho); the hull aft of x_d
+    adds nothing. Slab faces fall on the steps, so the sums are exact."""
     from stabflow.dynamics.manoeuvring import slender_body_derivatives
 
     L, T0, T1, T2, xd = 40.0, 1.0, 3.0, 3.6, -14.0
-    x = np.linspace(-L / 2, L / 2, 40001)
+    x, dx = _slabs(L, 400)
     draft = np.where(x >= 0.0, T1, np.where(x >= xd, T2, T0))
-    d = slender_body_derivatives(x, draft, L)
+    d = slender_body_derivatives(x, draft, dx, L)
     m1, m2 = np.pi * T1**2 / 2, np.pi * T2**2 / 2
-    assert d["x_trailing"] == pytest.approx(xd, abs=1e-3)
+    assert d["x_trailing"] == pytest.approx(xd, abs=1e-9)
     assert d["yv"] * 0.5 * L**2 == pytest.approx(-m2, rel=1e-12)
-    assert d["yr"] * 0.5 * L**3 == pytest.approx(-xd * m2, rel=1e-4)
-    assert d["nv"] * 0.5 * L**3 == pytest.approx(-(xd * m2 - xd * m2 + m1 * L / 2), rel=1e-3)
-    assert d["nr"] * 0.5 * L**4 == pytest.approx(-(xd**2 * m2 - m2 * xd**2 / 2 + m1 * L**2 / 8), rel=1e-3)
-    # a deepest point forward of midships (a sonar dome) is refused
-    with pytest.raises(StabflowError, match="forward of midships"):
-        slender_body_derivatives(x, np.where(np.abs(x - 15.0) < 1.0, 5.0, draft), L)
+    assert d["yr"] * 0.5 * L**3 == pytest.approx(-xd * m2, rel=1e-9)
+    assert d["nv"] * 0.5 * L**3 == pytest.approx(-(xd * m2 - xd * m2 + m1 * L / 2), rel=1e-9)
+    assert d["nr"] * 0.5 * L**4 == pytest.approx(-(xd**2 * m2 - m2 * xd**2 / 2 + m1 * L**2 / 8), rel=1e-9)
     # a shallower stern changes nothing aft of the trailing edge
-    d0 = slender_body_derivatives(x, np.where(x < xd, 0.1, draft), L)
+    d0 = slender_body_derivatives(x, np.where(x < xd, 0.1, draft), dx, L)
     for k in ("yv", "yr", "nv", "nr"):
         assert d0[k] == pytest.approx(d[k], rel=1e-12), k
+    # a deepest point forward of midships (a sonar dome) is refused
+    with pytest.raises(StabflowError, match="forward of midships"):
+        slender_body_derivatives(x, np.where(np.abs(x - 15.0) < 1.0, 5.0, draft), dx, L)
 
 
 def test_trawler_hull_derivatives_from_its_profile_make_it_course_stable(trawler):
     """With Clarke's regression the deep trawler is directionally unstable (open-loop sway-yaw
     eigenvalue > 0: the 10/10 zig-zag never comes back); slender-body theory on its lateral profile,
-    whose deadwood ends at x = -8.7 m, gives a stable hull that completes the zig-zag."""
+    whose deadwood ends at x = -8.9 m, gives a stable hull that completes the zig-zag."""
     from stabflow.dynamics.manoeuvres import zigzag_overshoots
     from stabflow.dynamics.manoeuvring import _linear_system, sway_yaw_eigenvalues
 
@@ -405,8 +412,8 @@ def test_record_events():
 
 
 def test_chunked_tables_continue_the_record(trawler):
-    """Irregular waves tabulated in 5-s chunks (grids re-centred on the ship, the autopilot's last
-    yaw carried over) give the record of 60-s chunks within the interpolation error."""
+    """Irregular waves tabulated in 5-s chunks (grids re-centred on the ship, the state carried
+    over) give the record of 60-s chunks within the interpolation error."""
     model = six_dof(trawler, heading=30.0)
     rng = np.random.default_rng(8)
     comps = (rng.uniform(0.01, 0.06, 30), np.linspace(0.5, 2.0, 30), rng.uniform(-np.pi, np.pi, 30))
@@ -429,8 +436,8 @@ def test_steady_turn_heels_outward(trawler):
 
 def test_small_waves_against_the_linear_frequency_domain_solution(trawler):
     """Stern-quartering regular waves of H/lambda = 1/2000, lambda = L, autopilot on: the first harmonic of
-    every motion of the 6-DOF record within 3 % of the linear frequency-domain solution of the same
-    equations (closed loop; measured within 2.8 %, sway)."""
+    every motion of the 6-DOF record within 0.5 % of the linear frequency-domain solution of the same
+    equations (closed loop, continuous servo; measured within 0.08 %, yaw)."""
     from stabflow.dynamics.manoeuvring import first_harmonic, linear_regular_response
 
     model = six_dof(trawler, heading=45.0)
@@ -445,4 +452,4 @@ def test_small_waves_against_the_linear_frequency_domain_solution(trawler):
     fh = first_harmonic(ds, we, 500.0)
     lin = [abs(X[0]), abs(X[1]), abs(X[2]), np.degrees(abs(X[3])), np.degrees(abs(X[4])), np.degrees(abs(X[5]))]
     for v, ref in zip(("surge", "sway", "heave", "roll", "pitch", "yaw"), lin):
-        assert fh[v] == pytest.approx(ref, rel=0.03), v
+        assert fh[v] == pytest.approx(ref, rel=0.005), v

@@ -234,7 +234,8 @@ def _horizontal_added_mass(m, s, mq, r):
     r = psi', nu' = J q'' + r (v, -u, 0) (J the rotation to the heading frame), so
     J^T A_b J q'' = Q - J^T A_b r (v, -u, 0). The velocity-dependent ideal-fluid forces (added-mass
     Coriolis terms, Munk moment) linear in the velocities are part of the hull derivatives (measured
-    on rotating arms and planar-motion mechanisms, Clarke et al. 1983) and are not added again; the
+    on rotating arms and planar-motion mechanisms, Clarke et al. 1983; in slender-body theory, the
+    Munk moment's -U int m dx in N_v) and are not added again; the
     quadratic surge term is added with the loads (``_manoeuvring_loads``)."""
     c, sn, u, v = _heading_velocities(m, s)
     rr = s[S_RATE + S_YAW]
@@ -351,8 +352,8 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
         j = 2 * n
         helm = _helm(m, s[S_YAW], s[S_HELM])
         s[S_HELM] = helm
-        ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, s[S_RUDDER], k1, f, wave, work,
-                   mq, r)
+        ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, _stop(m, s[S_RUDDER]), k1, f, wave,
+                   work, mq, r)
         k1[S_RUDDER] = _rudder_rate(m, s, helm)
         for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k1[q]

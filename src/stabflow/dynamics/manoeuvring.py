@@ -13,8 +13,8 @@ instantaneous positions, and the forces a free course needs:
   lateral profile (:func:`slender_body_derivatives`), unless given, acting at a height
   ``side_force_height`` above the keel for the roll moment, and the inertia of the horizontal
   added mass of (u, v, r) in body axes: given (e.g. Capytaine's zero-frequency limit,
-  :func:`stabflow.dynamics.hydro.manoeuvring_added_mass`) or from the same regression; the
-  velocity-dependent ideal-fluid forces (Munk moment) are inside the measured derivatives;
+  :func:`stabflow.dynamics.hydro.manoeuvring_added_mass`) or from Clarke's regression; the
+  velocity-dependent ideal-fluid forces (Munk moment) are inside the derivatives;
 * cross-flow drag of the hull's strips, Y = -1/2 rho sum T(x) C_D(x) |v + r x| (v + r x) dx (the
   cross-flow principle), with the 2-D section drag C_D against B / 2T from Hoerner's curve
   (:data:`HOERNER_CROSSFLOW`): it bounds drift and yaw rate where the linear derivatives alone
@@ -93,7 +93,7 @@ def clarke_derivatives(length: float, breadth: float, draft: float, cb: float) -
     }
 
 
-def slender_body_derivatives(x, draft, length: float) -> dict[str, float]:
+def slender_body_derivatives(x, draft, dx, length: float, band: float = 0.01) -> dict[str, float]:
     """Linear manoeuvring derivatives of the hull's own lateral profile by slender-body theory, in
     Clarke's prime system (:func:`clarke_derivatives`), about x = 0.
 
@@ -103,56 +103,56 @@ def slender_body_derivatives(x, draft, length: float) -> dict[str, float]:
     w = v + x r, a strip of water passing the hull from bow to stern takes the momentum m w, so the
     steady force per unit length is f = U d(m w)/dx. The flow is taken to leave the hull where the
     profile stops deepening: m is replaced by its running maximum from the bow, and the hull ends at
-    the (aftmost) deepest station x_T, which must lie aft of midships (a profile whose deepest point
-    is a bow bulb or a sonar dome is refused), the trailing edge, behind which the wake carries the shed
-    momentum and the hull takes no force (a rudder or skeg aft of it is a foil). Integrating,
+    the trailing edge x_T, the aft face of the aftmost station whose m is within ``band`` of the
+    largest (a level keel ends at the stern whatever its last digits); behind it the wake carries
+    the shed momentum and the hull takes no force (a rudder or skeg there is a foil). x_T must lie
+    aft of midships: a profile whose deepest point is a bow bulb or a sonar dome is refused.
+    Integrating,
 
-        Y_v = -U m(x_T),   Y_r = -U x_T m(x_T),
-        N_v = -U (x_T m(x_T) + int m~ dx),   N_r = -U (x_T^2 m(x_T) + int m~ x dx),
+        Y_v = -U m_T,   Y_r = -U x_T m_T,
+        N_v = -U (x_T m_T + int m~ dx),   N_r = -U (x_T^2 m_T + int m~ x dx),
 
-    the integrals over [x_T, bow]. For a plate of constant draft T over the length L these are the
-    leading terms of Clarke, Gedling & Hine's regressions, -S, S/2, -S/2 and -S/4 with
-    S = pi (T / L)^2 (tested); a deadwood or a keel raked aft moves the trailing edge's lift aft and
-    makes the hull more stable, which those regressions on L, B, T and C_B cannot see. Viscous lift
-    beyond this is the cross-flow drag (nonlinear) of :func:`build_six_dof`.
-
-    The added-mass derivatives are the strip sums over the whole hull, -int m (1, x, x, x^2) dx.
+    the integrals over [x_T, bow] as sums over the stations' slabs. For a plate of constant draft T
+    over the length L these are the leading terms of Clarke, Gedling & Hine's regressions, -S, S/2,
+    -S/2 and -S/4 with S = pi (T / L)^2 (tested); a deadwood or a keel raked aft moves the trailing
+    edge's lift aft and makes the hull more stable, which those regressions on L, B, T and C_B cannot
+    see. Left out: the beam (flat-plate sections; Clarke's Y'v grows with C_B B / T) and viscous lift
+    beyond the cross-flow drag (nonlinear) of :func:`build_six_dof`.
 
     Parameters
     ----------
-    x : array
-        Station positions [m, + forward].
+    x, dx : array
+        Station centres and slab widths [m] (:class:`stabflow.geometry.Sections`).
     draft : array
         Station drafts [m] (0 where the station is out of the water).
     length : float
         Reference length L [m] of the prime system.
+    band : float
+        Relative tolerance on the largest added mass that still counts as the deepest [-].
 
     Returns
     -------
     dict
-        ``yv, yr, nv, nr, yvdot, yrdot, nvdot, nrdot`` as :func:`clarke_derivatives`, and the trailing
-        edge ``x_trailing`` [m].
+        ``yv, yr, nv, nr`` as :func:`clarke_derivatives`, and the trailing edge ``x_trailing`` [m].
     """
     x = np.asarray(x, float)
     o = np.argsort(x)
-    x, a = x[o], 0.5 * np.pi * np.asarray(draft, float)[o] ** 2  # added mass / rho [m^2]
+    x, w = x[o], np.asarray(dx, float)[o]
+    a = 0.5 * np.pi * np.asarray(draft, float)[o] ** 2  # added mass / rho [m^2]
     if not np.any(a > 0.0):
         raise StabflowError("slender-body derivatives: no station has a draft")
     run = np.maximum.accumulate(a[::-1])[::-1]  # running maximum from the bow aft
-    it = int(np.flatnonzero(a == a.max())[0])   # the aftmost deepest station: the trailing edge
-    if x[it] > 0.0:
+    it = int(np.flatnonzero(a >= (1.0 - band) * a.max())[0])  # the aftmost deepest station
+    xt, mt = float(x[it] - 0.5 * w[it]), float(run[it])        # its aft face: the trailing edge
+    if xt > 0.0:
         raise StabflowError(f"slender-body derivatives: the deepest station is forward of midships (x = {x[it]:.2f} m; "
                             "a bulb or a sonar dome deeper than the aft body?), where the flow would leave the hull: "
-                            "use the clarke derivatives or give them in manoeuvring.derivatives")
-    xs, ms = x[it:], run[it:]
-    xt, mt = float(x[it]), float(a[it])
+                            "use hull_derivatives: clarke, or give all four of yv, yr, nv, nr in manoeuvring.derivatives")
+    ms, xs, ws = run[it:], x[it:], w[it:]
     L = float(length)
-    m0, m1 = np.trapezoid(ms, xs), np.trapezoid(ms * xs, xs)
-    w0, w1, w2 = np.trapezoid(a, x), np.trapezoid(a * x, x), np.trapezoid(a * x * x, x)
+    m0, m1 = float(np.sum(ms * ws)), float(np.sum(ms * xs * ws))
     return {"yv": -mt / (0.5 * L**2), "yr": -xt * mt / (0.5 * L**3),
-            "nv": -(xt * mt + m0) / (0.5 * L**3), "nr": -(xt**2 * mt + m1) / (0.5 * L**4),
-            "yvdot": -w0 / (0.5 * L**3), "yrdot": -w1 / (0.5 * L**4), "nvdot": -w1 / (0.5 * L**4),
-            "nrdot": -w2 / (0.5 * L**5), "x_trailing": xt}
+            "nv": -(xt * mt + m0) / (0.5 * L**3), "nr": -(xt**2 * mt + m1) / (0.5 * L**4), "x_trailing": xt}
 
 
 #: the sources of the hull derivatives (``Manoeuvring.hull``)
@@ -227,7 +227,7 @@ class Manoeuvring:
     resistance [-] (0: the friction line alone); ``side_force_height`` [m above the keel] where the
     hull side force acts (None: half the draft, the centre of a rectangular lateral area);
     ``added_mass`` (3, 3) of (surge, sway, yaw) about G in body axes [kg, kg m, kg m^2], or None for
-    Clarke's regression (which has no surge term: A11 = 0).
+    Clarke's regression (which has no surge term: A11 = 0), whichever ``hull`` derivatives.
     """
 
     foils: tuple = ()
@@ -269,9 +269,12 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     L, B, T = hp.length, hp.breadth, hp.draft
     if man.hull not in HULL_DERIVATIVES:
         raise StabflowError(f"manoeuvring: hull derivatives {man.hull!r} are not one of {list(HULL_DERIVATIVES)}")
-    der = hull_derivative_sets(sp)[man.hull]
+    sets = hull_derivative_sets(sp)
+    der = sets[man.hull]
     if isinstance(der, str):
-        raise StabflowError(f"manoeuvring: {der}")
+        if not {"yv", "yr", "nv", "nr"} <= set(man.derivatives):
+            raise StabflowError(f"manoeuvring: {der}")
+        der = {}
     der = der | dict(man.derivatives)
     q = 0.5 * rho
     p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
@@ -300,17 +303,17 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     m[K6.M_ZIGZAG] = np.radians(ap.zigzag_deg)
     if man.added_mass is None:
         # body-axis added mass of (u, v, r): -(prime added-mass derivatives) 1/2 rho L^n
+        cl = sets["clarke"]
         ab = np.zeros((3, 3))
-        ab[1, 1] = -q * L**3 * der["yvdot"]
-        ab[1, 2] = -q * L**4 * der["yrdot"]
-        ab[2, 1] = -q * L**4 * der["nvdot"]
-        ab[2, 2] = -q * L**5 * der["nrdot"]
+        ab[1, 1] = -q * L**3 * cl["yvdot"]
+        ab[1, 2] = -q * L**4 * cl["yrdot"]
+        ab[2, 1] = -q * L**4 * cl["nvdot"]
+        ab[2, 2] = -q * L**5 * cl["nrdot"]
         # the derivatives are about midships: velocities there are (u, v - x_G r, r)
         H = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, -lcg], [0.0, 0.0, 1.0]])
         ab = H.T @ ab @ H
-        src = ((f"Clarke et al. (1983) regression at B/L {B / L:.3f}, B/T {B / T:.2f}, C_B {hp.cb:.3f}"
-                if man.hull == "clarke" else "the slender-body strip sums") + ": give the added mass (e.g. "
-               "Capytaine's zero-frequency limit, stabflow.dynamics.hydro.manoeuvring_added_mass)")
+        src = (f"Clarke et al. (1983) regression at B/L {B / L:.3f}, B/T {B / T:.2f}, C_B {hp.cb:.3f}: give the added "
+               "mass (e.g. Capytaine's zero-frequency limit, stabflow.dynamics.hydro.manoeuvring_added_mass)")
     else:
         ab = np.asarray(man.added_mass, float).reshape(3, 3)
         src = "the given added mass"
@@ -342,8 +345,8 @@ def hull_derivative_sets(sp: xr.Dataset) -> dict[str, dict | str]:
     hp = particulars(sp)
     out = {"clarke": clarke_derivatives(hp.length, hp.breadth, hp.draft, hp.cb)}
     try:
-        out["slender_body"] = slender_body_derivatives(sp["x"].values,
-                                                       np.where(sp["valid"].values, sp["draft"].values, 0.0), hp.length)
+        out["slender_body"] = slender_body_derivatives(sp["x"].values, np.where(sp["valid"].values, sp["draft"].values, 0.0),
+                                                       sp["dx"].values, hp.length)
     except StabflowError as e:
         out["slender_body"] = str(e)
     return out
@@ -366,7 +369,7 @@ def with_hull_derivatives(model: SixDof, der: dict) -> SixDof:
 
     m = model.m.copy()
     _set_hull_derivatives(m, der, float(model.p[K.P_RHO]), model.length)
-    return replace(model, m=m, derivatives=dict(der))
+    return replace(model, m=m, derivatives={k: der[k] for k in ("yv", "yr", "nv", "nr")})
 
 
 def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,
@@ -529,8 +532,8 @@ def _linear_system(model: SixDof, eps: float = 1e-6):
 
 def sway_yaw_eigenvalues(model: SixDof) -> np.ndarray:
     """The two eigenvalues [1/s] of the open-loop sway-yaw motion (rudder fixed) about the calm-water
-    straight run: the linear system in the heading-frame sway velocity y', the heading psi and the
-    yaw rate r, rewritten in the body sway velocity v = y' - U psi (the loads depend on psi only
+    straight run: the linear system in the sway velocity y' across the mean course, the heading psi
+    and the yaw rate r, rewritten in the body sway velocity v = y' - U psi (the loads depend on psi only
     through v), which removes the neutral mode of a course change. A positive real part is a
     directionally unstable hull."""
     A, _, _ = _linear_system(model)

@@ -464,7 +464,7 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                 + [f"{float(d[f'{k}_{c}']):.4f}" for c in ("yv", "yr", "nv", "nr")]
                 + [f"{float(d[f'sway_yaw_eigenvalue_{k}']):+.3f}"]
                 for k in ("clarke", "slender_body") if f"{k}_yv" in d]
-    der_rows += [[f"{k.replace('_', ' ')}: not available", d.attrs[f"{k}_unavailable"], "", "", "", ""]
+    der_rows += [[f"{k.replace('_', ' ')}: not available ({d.attrs[f'{k}_unavailable']})", "", "", "", "", ""]
                  for k in ("clarke", "slender_body") if f"{k}_unavailable" in d.attrs]
     if given and "derivative_yv" in d:
         der_rows.append(["used (with the given values)"] + [f"{float(d[f'derivative_{c}']):.4f}"

@@ -21,8 +21,9 @@ Rare problem (motion perturbation method)
     printed, 1 - phidot_U / phidot_Cr, is 0 at capsize; its complement is used).
 6-DOF conditions
     The records of ``dof: 6`` conditions are regenerated with the 6-DOF model; the perturbation is
-    applied to the grid state just after the crossing (the autopilot is a discrete controller on
-    the time grid, which an off-grid sub-step would disturb) and the run continues from there
+    applied to the grid state just after the crossing (the roll amplitude of the damping is a
+    state updated at the steps, which an off-grid sub-step would not have) and the run continues
+    from there
     (waves restarted at that time, tabulated around the ship chunk by chunk).
 Declustering
     Crossings of the same threshold in the same record closer than the decorrelation time (roll
@@ -136,8 +137,8 @@ def crossing_state(model: Model, components, states: np.ndarray, n0: int, level:
     the state at step ``n0 + 1``, the first beyond the level."""
     dt = model.dt
     if model.six is not None:
-        # 6-DOF: the first grid state beyond the level (the autopilot is a discrete controller on the
-        # time grid; an off-grid sub-step would change its derivative term)
+        # 6-DOF: the first grid state beyond the level (the damping's roll amplitude is updated at
+        # the steps; an off-grid sub-step would not have it)
         return (n0 + 1) * dt, states[n0 + 1].copy()
     s0 = states[n0]
     r0, r1 = s0[S_ROLL], states[n0 + 1, S_ROLL]
