@@ -123,15 +123,16 @@ def test_six_dof_condition_records_regenerate_and_run_splittime():
     ev = record_events(six_dof_dataset(model.six, st0, model.dt, status), broach_deg=30.0, celerity=1.0,
                        surf_tolerance=0.05, surf_min_s=10.0, heading_deg=45.0)
     assert int(both["broached"].sel(record=2)) == ev["broach"]
-    # the first up-crossing of 20 deg in record 0: the 6-DOF crossing state is the grid state after it
-    states, last = simulate_record(model, 0)
+    # the first up-crossing of 20 deg (record r0): the 6-DOF crossing state is the grid state after it
+    m = (both["crossing_threshold"] == 0) & (both["crossing_side"] == 1)
+    assert bool(m.any())
+    r0, n0 = int(both["crossing_record"].values[m][0]), int(both["crossing_step"].values[m][0])
+    states, last = simulate_record(model, r0)
     assert states.shape[1] == N_STATE6
-    m = (both["crossing_record"] == 0) & (both["crossing_threshold"] == 0) & (both["crossing_side"] == 1)
-    n0 = int(both["crossing_step"].values[m][0])
     tc, sc = crossing_state(model, None, states, n0, np.radians(20.0))
     assert tc == pytest.approx((n0 + 1) * model.dt) and np.degrees(sc[S_ROLL]) >= 20.0 > np.degrees(states[n0, S_ROLL])
     # restart inside the record with the waves at t0 = (n0 + 1) dt
-    comps = model.sea.components(cond["seed"], 0)
+    comps = model.sea.components(cond["seed"], r0)
     k = min(200, last - n0 - 1)
     again, _, _ = run_six_dof(model.six, comps, k * model.dt, model.dt, s0=sc, t0=tc)
     roll = np.degrees(states[n0 + 1: n0 + 1 + k + 1, S_ROLL])
@@ -139,7 +140,8 @@ def test_six_dof_condition_records_regenerate_and_run_splittime():
     wrong, _, _ = run_six_dof(model.six, comps, k * model.dt, model.dt, s0=sc, t0=tc + 1.0)
     assert np.max(np.abs(np.degrees(wrong[:, S_ROLL]) - roll)) > 0.5
     # split-time on the 6-DOF ensemble: every crossing gets a bracket or a critical perturbation
-    cfg = dict(pipe["splittime"], sample_hours=2 * 120.0 / 3600, thresholds_deg=[20.0], max_perturbation=120.0,
+    # the course-stable trawler (slender-body derivatives) needs 130-160 deg/s at these crossings
+    cfg = dict(pipe["splittime"], sample_hours=2 * 120.0 / 3600, thresholds_deg=[20.0], max_perturbation=240.0,
                min_clusters=3)
     st = analyse(model, both, cfg)
     delta = st["critical_perturbation"].values
