@@ -85,6 +85,20 @@ def test_report_has_chapters_and_validation_table(pipeline):
             assert (html / src).exists(), (page.name, src)
 
 
+def test_broaching_chapter_tabulates_both_hull_derivative_sets(pipeline):
+    """The broaching chapter lists Clarke's and the slender-body derivatives, marks the set in use
+    and gives each set's sway-yaw eigenvalue as the results file holds it."""
+
+    with xr.open_dataset(pipeline / "broaching" / "barge.nc") as d:
+        md = (pipeline / "report" / "html" / "_sources" / "broaching.md").read_text()
+        assert d.attrs["hull_derivatives"] == "clarke"
+        assert "| Clarke et al. (1983) (used) |" in md and "| slender body, hull profile |" in md
+        for k in ("clarke", "slender_body"):
+            assert f"{float(d[f'{k}_yv']):.4f}" in md
+            assert f"{float(d[f'sway_yaw_eigenvalue_{k}']):+.3f}" in md
+        assert float(d["derivative_yv"]) == float(d["clarke_yv"])
+
+
 def test_criteria_results_and_chapters(pipeline):
     """Every ship has its criteria file and chapter: IS Code rows with verdicts (the barge and the
     Wigley hull carry their own windage), unsourced standards NOT EVALUATED with the item named."""
