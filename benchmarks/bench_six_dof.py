@@ -82,7 +82,7 @@ def main(argv=None):
         conv = max(ok)
         print(f"  converged step (trajectory within 1 % over the first {ap_h:g} s): {conv:g} s")
     else:
-        conv = 0.0125
+        conv = min(errs)
         print(f"  NOT CONVERGED: no step within 1 % over the first {ap_h:g} s; timing at {conv:g} s")
     for dt in sorted({conv, 0.5}):
         t0 = time.process_time()

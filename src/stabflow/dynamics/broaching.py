@@ -187,7 +187,8 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
             out[f"turning_{int(helm)}_{k}"] = v
         tracks[f"turning circle, rudder {helm:g}°"] = trajectory(ds)
     from stabflow.dynamics import _kernels_6dof as K6
-    from stabflow.dynamics.manoeuvring import hull_derivative_sets, sway_yaw_eigenvalues, with_hull_derivatives
+    from stabflow.dynamics.manoeuvring import (LINEAR_DERIVATIVES, hull_derivative_sets, sway_yaw_eigenvalues,
+                                               with_hull_derivatives)
 
     rudder = bool(np.any(model.foils[:, K6.F_RUDDER] != 0.0)) if len(model.foils) else False
     no_rudder = "the ship's manoeuvring section has no rudder foil: the autopilot cannot steer"
@@ -197,14 +198,15 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
 
     lam_max = sway_yaw_eigenvalue(model)
     out["sway_yaw_eigenvalue"] = lam_max
-    for k in ("yv", "yr", "nv", "nr"):
+    for k in LINEAR_DERIVATIVES:
         out[f"derivative_{k}"] = float(model.derivatives[k])
     # both sources of hull derivatives side by side (the report's table), each with its eigenvalue
-    for name, der in hull_derivative_sets(section_parameters(model.sec, _statics(ship))).items():
+    sp = section_parameters(model.sec, _statics(ship))
+    for name, der in hull_derivative_sets(sp).items():
         if isinstance(der, str):
             out[f"{name}_unavailable"] = der
             continue
-        for k in ("yv", "yr", "nv", "nr"):
+        for k in LINEAR_DERIVATIVES:
             out[f"{name}_{k}"] = float(der[k])
         out[f"sway_yaw_eigenvalue_{name}"] = sway_yaw_eigenvalue(with_hull_derivatives(model, der))
     for z in (10.0, 20.0):
@@ -335,7 +337,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
     ds["surf_riding_melnikov_wave_force"] = ("surf_case", thr[:, 3])
     ds.attrs.update(manoeuvre_length=L, manoeuvre_speed=model.speed,
                     hull_derivatives=str(ship.data.get("manoeuvring", {}).get("hull_derivatives", "clarke")),
-                    manoeuvre_breadth=float(particulars(section_parameters(model.sec, _statics(ship))).breadth))
+                    manoeuvre_breadth=float(particulars(sp).breadth))
     return ds, rows, tracks, zigzags
 
 

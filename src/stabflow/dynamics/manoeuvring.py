@@ -157,6 +157,8 @@ def slender_body_derivatives(x, draft, dx, length: float, band: float = 0.01) ->
 
 #: the sources of the hull derivatives (``Manoeuvring.hull``)
 HULL_DERIVATIVES = ("clarke", "slender_body")
+#: the linear hull derivatives the kernel uses (prime system, about midships)
+LINEAR_DERIVATIVES = ("yv", "yr", "nv", "nr")
 
 
 def ittc57_friction(reynolds) -> np.ndarray:
@@ -272,7 +274,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     sets = hull_derivative_sets(sp)
     der = sets[man.hull]
     if isinstance(der, str):
-        if not {"yv", "yr", "nv", "nr"} <= set(man.derivatives):
+        if not set(LINEAR_DERIVATIVES) <= set(man.derivatives):
             raise StabflowError(f"manoeuvring: {der}")
         der = {}
     der = der | dict(man.derivatives)
@@ -369,7 +371,7 @@ def with_hull_derivatives(model: SixDof, der: dict) -> SixDof:
 
     m = model.m.copy()
     _set_hull_derivatives(m, der, float(model.p[K.P_RHO]), model.length)
-    return replace(model, m=m, derivatives={k: der[k] for k in ("yv", "yr", "nv", "nr")})
+    return replace(model, m=m, derivatives={k: der[k] for k in LINEAR_DERIVATIVES})
 
 
 def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,

@@ -448,6 +448,7 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                 "duration": float(d.attrs["map_duration"]), "interval": d.attrs["map_interval"],
                 "level": 100 * (1 - float(d.attrs["map_alpha"]))}
     from stabflow.config import load_ship
+    from stabflow.dynamics.manoeuvring import HULL_DERIVATIVES, LINEAR_DERIVATIVES
 
     sh = load_ship(Path(config.get("ships_dir", "config/ships")) / f"{ship}.yaml")
     mcfg = sh.data.get("manoeuvring", {})
@@ -456,19 +457,19 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
     hull_src = {"clarke": "Clarke, Gedling & Hine (1983), a regression of model tests on L, B, T and C_B",
                 "slender_body": "slender-body theory on this hull's own lateral profile (its deadwood, keel rake "
                                 "and trim; the flow leaves at the deepest aft station)"}
-    hull_der = str(mcfg.get("hull_derivatives", "clarke"))
+    hull_der = d.attrs["hull_derivatives"]
     derivatives = (f"given {', '.join(sorted(given))} ({mcfg['derivatives'].get('source', 'source not given')}), the rest "
                    if given else "") + hull_src[hull_der]
     der_rows = [[{"clarke": "Clarke et al. (1983)", "slender_body": "slender body, hull profile"}[k]
                  + (" (used)" if k == hull_der and not given else "")]
-                + [f"{float(d[f'{k}_{c}']):.4f}" for c in ("yv", "yr", "nv", "nr")]
+                + [f"{float(d[f'{k}_{c}']):.4f}" for c in LINEAR_DERIVATIVES]
                 + [f"{float(d[f'sway_yaw_eigenvalue_{k}']):+.3f}"]
-                for k in ("clarke", "slender_body") if f"{k}_yv" in d]
+                for k in HULL_DERIVATIVES if f"{k}_yv" in d]
     der_rows += [[f"{k.replace('_', ' ')}: not available ({d.attrs[f'{k}_unavailable']})", "", "", "", "", ""]
-                 for k in ("clarke", "slender_body") if f"{k}_unavailable" in d.attrs]
+                 for k in HULL_DERIVATIVES if f"{k}_unavailable" in d.attrs]
     if given and "derivative_yv" in d:
         der_rows.append(["used (with the given values)"] + [f"{float(d[f'derivative_{c}']):.4f}"
-                                                            for c in ("yv", "yr", "nv", "nr")]
+                                                            for c in LINEAR_DERIVATIVES]
                         + [f"{float(d['sway_yaw_eigenvalue']):+.3f}"])
     return _render("broaching.md.j2", ship=ship, a=config["broaching"], rows=rows, foils=foils, derivatives=derivatives,
                    der_rows=der_rows,

@@ -30,8 +30,7 @@ from stabflow.dynamics.tables import SectionTables, kernel_args, section_tables
 from stabflow.constants import KNOT
 from stabflow.geometry import Sections, build_hull
 from stabflow.io import annotate
-from stabflow.statistics.signals import (SPECTRUM_SEGMENT, crossings, decorrelation_time, envelope, local_peaks,
-                                         quantile_from_histogram, welch_psd)
+from stabflow.statistics.signals import SPECTRUM_SEGMENT, crossings, envelope, local_peaks, welch_psd
 from stabflow.hydrostatics.statics import compute_statics, equilibrium
 from stabflow.waves.seaway import Seaway
 from stabflow.waves.synthesis import station_wave_table
@@ -93,12 +92,12 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
     tables = section_tables(sec, int(cond.get("table_angles", 181)), int(cond.get("table_levels", 101)))
     p = parameters(co, s.rho, float(st["lcg"]), float(st["kg"]), float(cond["heading_deg"]))
     six = None
-    if int(cond.get("dof", 3)) == 6 and cond.get("lateral_acceleration"):
-        from stabflow import StabflowError
-
-        raise StabflowError(f"config: ensembles: {cond.get('name', '?')}: lateral_acceleration is computed for 3-DOF "
-                            "records only (the 6-DOF sway and yaw accelerations are not in it)")
     if int(cond.get("dof", 3)) == 6:
+        if cond.get("lateral_acceleration"):
+            from stabflow import StabflowError
+
+            raise StabflowError(f"config: ensembles: {cond.get('name', '?')}: lateral_acceleration is computed for "
+                                "3-DOF records only (the 6-DOF sway and yaw accelerations are not in it)")
         from stabflow.dynamics.broaching import manoeuvring_from_ship
         from stabflow.dynamics.manoeuvring import build_six_dof
 
