@@ -52,10 +52,19 @@ def main(argv=None):
     ap.add_argument("--ship", default="trawler")
     ap.add_argument("--seconds", type=float, default=600.0)
     ap.add_argument("--horizon", type=float, default=30.0)
+    ap.add_argument("--radiation", help="the radiation step's NetCDF of a ship with the heave-pitch memory model "
+                                        "(computed first when not given)")
     a = ap.parse_args(argv)
     numba.set_num_threads(1)
     ship = load_ship(f"config/ships/{a.ship}.yaml")
-    model = six_dof_model(ship, 45.0, 10.0)
+    rad = None
+    if a.radiation:
+        import xarray as xr
+
+        rad = xr.open_dataset(a.radiation).load()
+    model = six_dof_model(ship, 45.0, 10.0, radiation=rad)
+    if model.memory is not None:
+        print(f"heave-pitch radiation memory: {len(model.memory.poles)} poles, {model.memory.n_states} states")
     sea = Seaway(kind="pierson_moskowitz", hs=3.1) if a.ship == "trawler" else \
         Seaway(kind="bretschneider", hs=8.5, tp=15.0)
     waves = sea.components(17, 0)

@@ -108,6 +108,8 @@ CONDITION = (("condition",), {"help": "<ship>_<name> of an ensembles entry"})
 RAO_CONDITION = (("--condition",), {"required": True, "help": "name of a rao condition"})
 THREADS = (("--threads",), {"type": int, "default": 1})
 HYDRO = (("--hydro",), {"help": "Capytaine coefficients NetCDF (hydro step), for ships that use them"})
+RADIATION = (("--radiation",), {"help": "heave-pitch memory model NetCDF (radiation step), for ships whose 6-DOF model "
+                                        "uses one (computed when not given)"})
 
 
 @dataclass(frozen=True)
@@ -134,7 +136,8 @@ def _broaching(a):
     cfg, figs = _section_and_figures(a, "broaching", lambda c: (
         [f"motions_{k}" for k in c["broaching"]["loadings"]] + ["strip", "manoeuvres"]
         + (["map"] if "map" in c["broaching"] else [])))
-    return steps.run_broaching(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs)
+    return steps.run_broaching(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs,
+                               radiation_nc=a.radiation)
 
 
 def _derivative(a):
@@ -165,6 +168,9 @@ COMMANDS: dict[str, Command] = {
     "hydro": Command("Capytaine added mass and damping at the natural frequencies, linear peer RAOs",
                      (SHIP, HULL, STATICS, CONFIG, RAO_CONDITION, OUT),
                      lambda a: steps.run_hydro(a.ship, a.hull, a.statics, _pipeline(a)["rao"], a.condition, a.output)),
+    "radiation": Command("heave-pitch added mass and damping over frequency (Capytaine) and the fitted memory model "
+                         "of the 6-DOF Cummins equation", (SHIP, OUT, FIGURE),
+                         lambda a: steps.run_radiation(a.ship, a.output, a.figure)),
     "roll-decay": Command("calm-water roll decay with the ship's damping (Ikeda components where selected)",
                           (SHIP, HULL, STATICS, OUT, FIGURE, HYDRO),
                           lambda a: steps.run_roll_decay(a.ship, a.hull, a.statics, a.output, a.figure, a.hydro)),
@@ -198,13 +204,14 @@ COMMANDS: dict[str, Command] = {
                                  lambda a: steps.run_validate_dynamics(a.ship, a.hull, a.statics, a.output)),
     "validate-ensemble": Command("seaway, step-size, extremes and split-time checks → NetCDF",
                                  (CONDITION, (("--ensemble",), {"required": True}), (("--extremes",), {}),
-                                  (("--splittime",), {}), HYDRO, CONFIG, OUT),
+                                  (("--splittime",), {}), HYDRO, RADIATION, CONFIG, OUT),
                                  _with_condition(lambda a, c, s: steps.run_validate_ensemble(
-                                     s, c, a.ensemble, a.output, a.extremes, a.splittime, a.hydro))),
+                                     s, c, a.ensemble, a.output, a.extremes, a.splittime, a.hydro, a.radiation))),
     "ensemble-shard": Command("simulate one shard of an irregular-sea ensemble",
-                              (CONDITION, (("--shard",), {"type": int, "required": True}), CONFIG, THREADS, HYDRO, OUT),
+                              (CONDITION, (("--shard",), {"type": int, "required": True}), CONFIG, THREADS, HYDRO,
+                               RADIATION, OUT),
                               _with_condition(lambda a, c, s: steps.run_ensemble_shard(s, c, a.shard, a.output, a.threads,
-                                                                                       a.hydro))),
+                                                                                       a.hydro, radiation_nc=a.radiation))),
     "ensemble-merge": Command("merge ensemble shards and draw the figures",
                               ((("shards",), {"nargs": "+"}), OUT,
                                (("--figures",), {"help": "folder for roll_distribution.png, spectra.png, time_histories.png"})),
@@ -213,9 +220,10 @@ COMMANDS: dict[str, Command] = {
                         ((("ensemble",), {"help": "ensemble.nc of a condition"}), CONFIG, OUT),
                         lambda a: steps.run_extremes(a.ensemble, _pipeline(a)["extremes"], a.output)),
     "splittime": Command("split-time capsize rate from an ensemble (motion perturbations)",
-                         (CONDITION, (("--ensemble",), {"required": True}), CONFIG, THREADS, HYDRO, OUT),
+                         (CONDITION, (("--ensemble",), {"required": True}), CONFIG, THREADS, HYDRO, RADIATION, OUT),
                          _with_condition(lambda a, c, s: steps.run_splittime(s, c, a.ensemble, _pipeline(a)["splittime"],
-                                                                             a.output, threads=a.threads, hydro_nc=a.hydro))),
+                                                                             a.output, threads=a.threads, hydro_nc=a.hydro,
+                                                                             radiation_nc=a.radiation))),
     "capsize-1dof": Command("1-DOF box-barge capsize rates: split-time and extremes against brute force",
                             (CONFIG, THREADS, OUT, (("--validation",), {"required": True, "help": "validation rows NetCDF"}),
                              FIGURE),
@@ -224,7 +232,7 @@ COMMANDS: dict[str, Command] = {
     "broaching": Command("paper 004's stern-quartering cases (6-DOF), calm-water manoeuvres, surf-riding thresholds",
                          (CONFIG, OUT, (("--validation",), {"required": True, "help": "validation rows NetCDF"}),
                           (("--figures",), {"help": "folder for the figures (<ship>_motions_<loading>.png, "
-                                                    "<ship>_strip.png, <ship>_manoeuvres.png)"})),
+                                                    "<ship>_strip.png, <ship>_manoeuvres.png)"}), RADIATION),
                          _broaching),
     "derivative": Command("derivative model of heave-roll-pitch (paper 001): fit, regular-wave parametric-roll map",
                           (CONFIG, OUT, (("--validation",), {"required": True, "help": "validation rows NetCDF"}),

@@ -330,6 +330,21 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "ea_height_above_g": ("m", "height of the crew location above G"),
     "ea_roll_period": ("s", "undamped natural roll period of the 3-DOF model"),
     "ea_acceleration_per_roll": ("m/s2", "lateral acceleration per radian of roll at the natural period, g + 4 pi^2 h / T^2"),
+    # heave-pitch radiation with memory (radiation step, issue 17): 2 x 2 matrices over (i, j) in
+    # (heave [m], pitch [rad]), so entries carry kg, kg m or kg m2 (added mass), N s/m, N s or N m s
+    # (damping) and N/m, N or N m per second (retardation functions)
+    "omega": ("rad/s", "wave frequency of the BEM"),
+    "added_mass": ("SI", "heave-pitch added mass A_ij(w) from the BEM (kg, kg m, kg m2)"),
+    "damping": ("SI", "heave-pitch radiation damping B_ij(w) from the BEM (N s/m, N s, N m s)"),
+    "added_mass_inf": ("SI", "heave-pitch added mass at infinite frequency from the BEM (kg, kg m, kg m2)"),
+    "added_mass_fit": ("SI", "A_ij(w) of the fitted memory model: A(inf) + Im K^(w) / w"),
+    "damping_fit": ("SI", "B_ij(w) of the fitted memory model: Re K^(w)"),
+    "kernel": ("SI", "retardation function K_ij(t) = (2/pi) int B_ij(w) cos(w t) dw of the BEM's B up to its last frequency"),
+    "kernel_fit": ("SI", "retardation function of the fitted memory model, sum_p Re(c_ijp exp(l_p t))"),
+    "pole_re": ("1/s", "real part of a pole l_p of the fitted memory model"),
+    "pole_im": ("rad/s", "imaginary part of a pole l_p of the fitted memory model"),
+    "residue_re": ("SI", "real part of the residue c_ijp of the fitted memory model"),
+    "residue_im": ("SI", "imaginary part of the residue c_ijp of the fitted memory model"),
 }
 
 

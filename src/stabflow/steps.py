@@ -146,6 +146,25 @@ def run_hydro(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out
     return ds
 
 
+def run_radiation(ship_yaml, out_nc, figure=None, progress: bool = True) -> xr.Dataset:
+    """radiation step (issue 17): heave-pitch added mass and damping of the hull mesh over frequency
+    (Capytaine), the fitted memory model of the 6-DOF Cummins equation → NetCDF + figure."""
+    from stabflow.dynamics.radiation import ship_radiation, uses_memory
+    from stabflow.io import write_netcdf
+    from stabflow.plots.broaching import radiation_figure
+
+    ship = load_ship(ship_yaml)
+    if not uses_memory(ship):
+        raise StabflowError(f"{ship_yaml}: manoeuvring.heave_pitch_radiation: the ship uses the constant coefficients "
+                            "(set it to memory for the radiation step)")
+    ds = ship_radiation(ship, progress=progress)
+    ds.attrs.update(ship=ship.name)
+    if figure:
+        radiation_figure(ds, figure)
+    write_netcdf(ds, out_nc)
+    return ds
+
+
 def run_rao(ship_yaml, hull_nc, statics_nc, rao_cfg: dict, condition: str, out_nc, fig=None, hydro_nc=None) -> xr.Dataset:
     """rao step: regular-wave sweep of the time-domain model for one condition → NetCDF + figure.
 
@@ -338,7 +357,7 @@ def run_validate_dynamics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
 
 
 def run_validate_ensemble(ship_yaml, cond: dict, ensemble_nc, out_nc, extremes_nc=None, splittime_nc=None,
-                          hydro_nc=None) -> xr.Dataset:
+                          hydro_nc=None, radiation_nc=None) -> xr.Dataset:
     """validation of an ensemble condition (seaway, step size) and of its extremes and split-time
     estimates against the brute force → NetCDF rows (key ``<ship>_<condition>``)."""
     from stabflow.statistics.ensemble import build_model
@@ -346,7 +365,7 @@ def run_validate_ensemble(ship_yaml, cond: dict, ensemble_nc, out_nc, extremes_n
     from stabflow.validation import checks_dataset
     from stabflow.validation.ensemble import ensemble_checks
 
-    model = build_model(load_ship(ship_yaml), cond, _open_optional(hydro_nc))
+    model = build_model(load_ship(ship_yaml), cond, _open_optional(hydro_nc), _open_optional(radiation_nc))
     ens = _open_optional(ensemble_nc)
     rows = ensemble_checks(model, ens, _open_optional(extremes_nc), _open_optional(splittime_nc))
     ds = checks_dataset(model.ship.name, "ensemble", rows)
@@ -355,7 +374,8 @@ def run_validate_ensemble(ship_yaml, cond: dict, ensemble_nc, out_nc, extremes_n
     return ds
 
 
-def run_ensemble_shard(ship_yaml, cond: dict, shard: int, out_nc, threads: int = 1, hydro_nc=None, progress=True):
+def run_ensemble_shard(ship_yaml, cond: dict, shard: int, out_nc, threads: int = 1, hydro_nc=None, progress=True,
+                       radiation_nc=None):
     """ensemble step, one shard: records [shard * shard_records, ...) of condition ``cond`` → NetCDF."""
     import numba
 
@@ -365,7 +385,7 @@ def run_ensemble_shard(ship_yaml, cond: dict, shard: int, out_nc, threads: int =
     ship = load_ship(ship_yaml)
     hydro = _open_optional(hydro_nc)
     numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
-    model = build_model(ship, cond, hydro)
+    model = build_model(ship, cond, hydro, _open_optional(radiation_nc))
     n = int(cond["shard_records"])
     recs = range(shard * n, min((shard + 1) * n, int(cond["records"])))
     if len(recs) == 0:
@@ -431,7 +451,7 @@ def run_extremes(ensemble_nc, cfg: dict, out_nc, fig_threshold=None, fig_rate=No
 
 
 def run_splittime(ship_yaml, cond: dict, ensemble_nc, cfg: dict, out_nc, figures: dict | None = None, threads: int = 1,
-                  hydro_nc=None):
+                  hydro_nc=None, radiation_nc=None):
     """splittime step: crossings, motion perturbations, GPD of the metric → capsize rate + figures."""
     import numba
 
@@ -442,7 +462,7 @@ def run_splittime(ship_yaml, cond: dict, ensemble_nc, cfg: dict, out_nc, figures
 
     hydro = _open_optional(hydro_nc)
     numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
-    model = build_model(load_ship(ship_yaml), cond, hydro)
+    model = build_model(load_ship(ship_yaml), cond, hydro, _open_optional(radiation_nc))
     with xr.open_dataset(ensemble_nc) as e:
         ens = e.load()
     cfg = step_settings(cfg, "splittime", condition_key(ens.attrs))
@@ -479,7 +499,7 @@ def run_capsize_1dof(cfg: dict, out_nc, validation_nc, figure=None, threads: int
 
 
 def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict | None = None,
-                  progress: bool = True) -> xr.Dataset:
+                  progress: bool = True, radiation_nc=None) -> xr.Dataset:
     """broaching step (issue 17): paper 004's stern-quartering cases with the 6-DOF model, calm-water
     manoeuvres, and the surf-riding threshold checks → NetCDF, validation rows, figures."""
     from pathlib import Path
@@ -491,12 +511,17 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
 
     cfg = config["broaching"]
     ship = load_ship(Path(ships_dir) / f"{cfg['ship']}.yaml")
-    ds = scenario(ship, cfg, progress=progress)
-    man, rows, tracks, zigzags = manoeuvre_checks(ship, cfg)
+    rad = _open_optional(radiation_nc)
+    from stabflow.dynamics.radiation import ship_radiation, uses_memory
+
+    if rad is None and uses_memory(ship):  # computed once here rather than for every model
+        rad = ship_radiation(ship, progress=progress)
+    ds = scenario(ship, cfg, progress=progress, radiation=rad)
+    man, rows, tracks, zigzags = manoeuvre_checks(ship, cfg, radiation=rad)
     ds = ds.merge(man)
     ds.attrs.update(man.attrs)
     if "map" in cfg:
-        pm = probability_map(ship, cfg, progress=progress)
+        pm = probability_map(ship, cfg, progress=progress, radiation=rad)
         ds = ds.merge(pm)
         ds.attrs.update(pm.attrs)
     if figures:

@@ -5,6 +5,7 @@ rule broaching:
     input:
         ship=ship_yaml,
         hull=hull_source,
+        radiation=broaching_radiation,
     output:
         nc=f"{RESULTS}/broaching/{{ship}}.nc",
         validation=f"{RESULTS}/validation/{{ship}}_manoeuvring.nc",
@@ -21,3 +22,23 @@ rule broaching:
         "../envs/stabflow.yaml"
     script:
         "../scripts/broaching.py"
+
+
+rule radiation:
+    """Heave-pitch added mass and damping over frequency (Capytaine) and the fitted memory model of the 6-DOF Cummins equation."""
+    wildcard_constraints:
+        ship="|".join(radiation_ships()) or "none",
+    input:
+        ship=ship_yaml,
+        hull=hull_source,
+    output:
+        nc=f"{RESULTS}/hydro/{{ship}}_radiation.nc",
+        figure=f"{RESULTS}/hydro/{{ship}}_radiation.png",
+    log:
+        f"{RESULTS}/logs/hydro/{{ship}}_radiation.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/hydro/{{ship}}_radiation.tsv"
+    conda:
+        "../envs/stabflow.yaml"
+    script:
+        "../scripts/radiation.py"

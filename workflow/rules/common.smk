@@ -121,6 +121,35 @@ def ensemble_hydro(wildcards):
     return [f"{RESULTS}/hydro/{c['ship']}_{RAO_CONDITIONS[0]}.nc"] if dyn.get("hydro") == "capytaine" else []
 
 
+def uses_memory(ship):
+    """True if the ship's 6-DOF model radiates in heave and pitch through the memory model."""
+    return SHIPS[ship].data.get("manoeuvring", {}).get("heave_pitch_radiation", "constant") == "memory"
+
+
+def radiation_ships():
+    """Ships whose 6-DOF records run (broaching step, dof: 6 ensembles) with the heave-pitch memory model."""
+    used = {c["ship"] for c in config["ensembles"] if int(c.get("dof", 3)) == 6}
+    if "broaching" in config:
+        used.add(config["broaching"]["ship"])
+    return sorted(s for s in used if s in SHIPS and uses_memory(s))
+
+
+def radiation_outputs():
+    """The radiation step's files (heave-pitch BEM over frequency and the fitted memory model)."""
+    return [f"{RESULTS}/hydro/{s}_radiation{x}" for s in radiation_ships() for x in (".nc", ".png")]
+
+
+def broaching_radiation(wildcards):
+    """The broaching ship's memory model, when it uses one."""
+    return [f"{RESULTS}/hydro/{wildcards.ship}_radiation.nc"] if uses_memory(wildcards.ship) else []
+
+
+def ensemble_radiation(wildcards):
+    """The memory model of a dof: 6 condition's ship, when it uses one."""
+    c = ENSEMBLES[wildcards.ens]
+    return [f"{RESULTS}/hydro/{c['ship']}_radiation.nc"] if int(c.get("dof", 3)) == 6 and uses_memory(c["ship"]) else []
+
+
 def ensemble_shards(wildcards):
     """All shard files of an ensemble condition."""
     c = ENSEMBLES[wildcards.ens]
@@ -245,6 +274,7 @@ def all_outputs():
         + [f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]]
         + capsize_1dof_outputs()
         + broaching_outputs()
+        + radiation_outputs()
         + derivative_outputs()
         + [f"{RESULTS}/waves/early_stage_C.csv", f"{RESULTS}/report/html/index.html"]
     )

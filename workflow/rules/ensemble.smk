@@ -4,6 +4,7 @@ rule ensemble_shard:
         ship=ensemble_ship_yaml,
         hull=ensemble_hull_source,
         hydro=ensemble_hydro,
+        radiation=ensemble_radiation,
     output:
         nc=f"{RESULTS}/ensemble/{{ens}}/shard_{{shard}}.nc",
     params:

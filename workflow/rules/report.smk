@@ -17,6 +17,7 @@ rule report:
         splittime=[f"{RESULTS}/splittime/{k}.nc" for k in config["splittime"]["conditions"]],
         capsize_1dof=capsize_1dof_outputs(),
         broaching=broaching_outputs() + broaching_outputs("figures"),
+        radiation=radiation_outputs(),
         derivative=derivative_outputs() + derivative_outputs("figures"),
         source=report_sources(),
     output:

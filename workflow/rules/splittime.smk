@@ -4,6 +4,7 @@ rule splittime:
         ship=ensemble_ship_yaml,
         ensemble=f"{RESULTS}/ensemble/{{ens}}/ensemble.nc",
         hydro=ensemble_hydro,
+        radiation=ensemble_radiation,
     output:
         nc=f"{RESULTS}/splittime/{{ens}}.nc",
         crossings=f"{RESULTS}/splittime/{{ens}}_crossings.png",

@@ -64,6 +64,7 @@ rule validate_ensemble:
         extremes=ensemble_extremes,
         splittime=ensemble_splittime,
         hydro=ensemble_hydro,
+        radiation=ensemble_radiation,
     output:
         nc=f"{RESULTS}/validation/{{ens}}_ensemble.nc",
     params:

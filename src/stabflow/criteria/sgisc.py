@@ -302,9 +302,11 @@ def surf_riding_thresholds(ship, cfg: dict, L: float) -> xr.Dataset:
 
     # the commanded speed only sets the model's thrust, which the threshold does not use; roll
     # damping does not enter the surge equation: the config coefficients stand in for Capytaine/Ikeda
+    surge = ship.modified(dynamics={"hydro": "config", "roll_damping": "coefficients"})
+    # heave and pitch do not enter the surge equation: no heave-pitch memory model (its BEM) for it
+    surge.data.get("manoeuvring", {})["heave_pitch_radiation"] = "constant"
     try:
-        model = six_dof_model(ship.modified(dynamics={"hydro": "config", "roll_damping": "coefficients"}), 0.0, 10.0,
-                              tables=(91, 51))
+        model = six_dof_model(surge, 0.0, 10.0, tables=(91, 51))
     except StabflowError as e:
         return xr.Dataset(attrs={"sr_not_computed": f"the 6-DOF surge model could not be built: {e}"})
     ratios = np.asarray(cfg["wavelength_ratios"], float)

@@ -10,7 +10,10 @@ adds what a free course needs:
   the wave heading relative to the ship is beta - psi;
 * calm-water resistance and a constant thrust, linear hull manoeuvring forces, foils (rudder,
   skeg) as lifting surfaces with their eddy-making normal force (paper 004 eqs 1-16), the inertia
-  of the horizontal added mass in body axes, and the PD autopilot with the first-order rudder servo (paper 004 eqs 30-34).
+  of the horizontal added mass in body axes, and the PD autopilot with the first-order rudder servo (paper 004 eqs 30-34);
+* optionally, heave and pitch radiation with memory (Cummins' equation as states,
+  :mod:`stabflow.dynamics.radiation`): the added mass of ``p`` is then A(inf) in heave and pitch, their
+  constant damping zero, and the convolution a tail of ``m`` with states after the rudder's.
 
 Parameters: ``p`` as in :mod:`._kernels` (its cos/sin beta are the wave heading relative to the
 mean course), ``m`` (``M_*`` positions below), ``foils`` (nf, F_N) rows and the cross-flow drag
@@ -52,6 +55,10 @@ M_ZIGZAG = 19      # heading deviation that reverses the zig-zag helm [rad]
 M_WRAP = 20        # > 0: the line table is periodic with this many intervals (one regular wave)
 M_AB = 21          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
 N_M = M_AB + 9
+# optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
+# :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then
+# the poles (re, im) and the residues (re, im) in (pole, i, j) order; its states follow S_HELM
+M_MEMORY = N_M
 
 # foil rows: position from G (x forward, z up) [m], area S C [m^2], lift slope [1/rad], stall and
 # trailing-edge stall angles [rad] (paper 004 eq 9), 1 for the rudder (turns with delta), effective
@@ -78,6 +85,8 @@ STEER_ZIGZAG = 2.0
 S_RUDDER = N_STATE
 S_HELM = N_STATE + 1
 N_STATE6 = N_STATE + 2
+# the radiation memory states (4 n reals: w_jp = (re, im) for input j in (heave, pitch), pole p) follow
+S_MEMORY = N_STATE6
 
 # record status
 OK = 0
@@ -257,6 +266,32 @@ def _horizontal_added_mass(m, s, mq, r):
         r[idx[a]] -= J[0][a] * e0 + J[1][a] * e1 + J[2][a] * e2
 
 
+@njit(cache=True, inline="always")
+def _memory(m, s, r, ds):
+    """Heave-pitch radiation memory (Cummins' convolution as states, :mod:`stabflow.dynamics.radiation`):
+    subtracts mu_i = sum_jp Re(c_ijp w_jp) from the generalized forces ``r`` of heave and pitch and
+    writes the states' rates w_jp' = l_p w_jp + q'_j into ``ds``. Nothing without the tail of ``m``."""
+    if m.shape[0] <= M_MEMORY:
+        return
+    n = int(m[M_MEMORY])
+    b = M_MEMORY + 1
+    c0 = b + 2 * n
+    for j in range(2):
+        qj = S_Z if j == 0 else S_PITCH
+        v = s[S_RATE + qj]
+        for q in range(n):
+            lr = m[b + 2 * q]
+            li = m[b + 2 * q + 1]
+            k = S_MEMORY + 2 * (n * j + q)
+            wr = s[k]
+            wi = s[k + 1]
+            ds[k] = lr * wr - li * wi + v
+            ds[k + 1] = li * wr + lr * wi
+            for i in range(2):
+                o = c0 + 2 * (4 * q + 2 * i + j)
+                r[S_Z if i == 0 else S_PITCH] -= m[o] * wr - m[o + 1] * wi
+
+
 @njit(cache=True)
 def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, ds, f, wave, work, mq, r):
     """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 3) at this time and
@@ -274,8 +309,9 @@ def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, d
         ds[j] = s[S_RATE + j]
     _generalized_system(p, s, f, mq, r)
     _horizontal_added_mass(m, s, mq, r)
+    _memory(m, s, r, ds)
     _solve_free(p, mq, r, ds[S_RATE:S_RATE + 6])
-    for j in range(S_RATE + 6, ds.shape[0]):
+    for j in range(S_RATE + 6, N_STATE6):
         ds[j] = 0.0
     return inside
 
@@ -327,12 +363,12 @@ def _stop(m, d):
 
 @njit(cache=True, nogil=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
-    """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6,); ``ltab`` (2 nsteps + 1, npoints, 3)
+    """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints, 3)
     the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle is a state of the
     RK4 with the rate of ``_rudder_rate``; the zig-zag helm switches at the steps. ``out``
-    (nsteps + 1, N_STATE6) receives the states. Returns (index of the last step done, status: OK,
+    (nsteps + 1, state size) receives the states. Returns (index of the last step done, status: OK,
     CAPSIZED (|roll| > phi_cap) or LEFT_TABLE)."""
-    ns = N_STATE6
+    ns = s0.shape[0]
     s = np.empty(ns)
     k1 = np.empty(ns)
     k2 = np.empty(ns)

@@ -60,16 +60,20 @@ def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg
 
 
 def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | None = None,
-                  tables: tuple[int, int] = (181, 101)) -> SixDof:
+                  tables: tuple[int, int] = (181, 101), radiation: xr.Dataset | None = None) -> SixDof:
     """The ship (optionally loaded to ``kg`` [m]) ready for 6-DOF records at ``speed_kn`` [kn] in waves
-    of ``heading_deg`` [degree] relative to the course (0 following), with its config coefficients."""
+    of ``heading_deg`` [degree] relative to the course (0 following), with its config coefficients
+    and, if the ship asks for it, the heave-pitch radiation memory (from the ``radiation`` step's
+    dataset ``radiation``, or computed now: :func:`stabflow.dynamics.radiation.ship_memory`)."""
+    from stabflow.dynamics.radiation import ship_memory
+
     s = ship.modified(kg=kg) if kg is not None else ship
     hull = build_hull(s)
     st = compute_statics(s, hull)
     sec = Sections(hull)
     co = coefficients(s, sec, st, None, speed=speed_kn * KNOT)
     return build_six_dof(sec, st, co, s.rho, heading_deg, speed_kn * KNOT, manoeuvring_from_ship(s, sec, st),
-                         tables=section_tables(sec, *tables))
+                         tables=section_tables(sec, *tables), memory=ship_memory(ship, float(st["lcg"]), radiation))
 
 
 def heavy_kg(ship: Ship, above_waterline: float) -> float:
@@ -87,10 +91,11 @@ def trough_phase(model: SixDof, omega: float) -> float:
     return float(np.pi - k * float(model.p[K.P_XG]) * np.cos(np.radians(model.heading_deg)))
 
 
-def scenario(ship: Ship, cfg: dict, progress: bool = False) -> xr.Dataset:
+def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Dataset | None = None) -> xr.Dataset:
     """Run paper 004's cases (``cfg``: the config's ``broaching`` section) at each loading; returns
     time histories along (loading, case, time), NaN after a record's end (``end_time``), and the
-    events of each record."""
+    events of each record. ``radiation``: the ship's heave-pitch memory dataset, if it uses one
+    (:func:`six_dof_model`)."""
     from tqdm import tqdm
 
     dt = float(cfg["dt"])
@@ -110,7 +115,7 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False) -> xr.Dataset:
     wave = np.full((len(cases), 3), np.nan)  # wave number, encounter frequency, phase (regular cases)
     bar = tqdm(total=len(loads) * len(cases), desc=f"{ship.name} paper 004 cases", disable=not progress)
     for i, (lname, kg) in enumerate(loads.items()):
-        model = six_dof_model(ship, float(cfg["heading_deg"]), float(cfg["speed_kn"]), kg)
+        model = six_dof_model(ship, float(cfg["heading_deg"]), float(cfg["speed_kn"]), kg, radiation=radiation)
         kgs[i] = float(model.p[K.P_ZG])
         for j, (kind, lam, h) in enumerate(cases):
             if kind == "regular":
@@ -159,9 +164,10 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False) -> xr.Dataset:
     return annotate(out)
 
 
-def manoeuvre_checks(ship: Ship, cfg: dict):
+def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None):
     """Calm-water manoeuvres at the ship file's loading and the commanded speed, and the surf-riding
-    thresholds in regular following waves of the scenario's height at its two longest wavelengths.
+    thresholds in regular following waves of the scenario's height at its two longest wavelengths;
+    with a heave-pitch memory model (``radiation``, :func:`six_dof_model`), its fit against the BEM.
 
     Returns (dataset of the results, validation rows, turning tracks, zig-zag histories)."""
     from dataclasses import replace
@@ -170,7 +176,11 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
     from stabflow.dynamics.surf_riding import melnikov_threshold, simulated_threshold
     from stabflow.validation import Check
 
-    model = six_dof_model(ship, 0.0, float(cfg["speed_kn"]))
+    from stabflow.dynamics.radiation import radiation_checks, ship_radiation, uses_memory
+
+    if radiation is None and uses_memory(ship):
+        radiation = ship_radiation(ship)
+    model = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), radiation=radiation)
     mc = cfg["manoeuvres"]
     calm = ([], [], [])
     dt = float(cfg["dt"])
@@ -328,8 +338,12 @@ def manoeuvre_checks(ship: Ship, cfg: dict):
             else:
                 rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
                                          "-", ref, kind="consistency", tolerance=0.05))
+    if model.memory is not None:
+        rows.extend(radiation_checks(radiation, model.memory))
+        out["memory_poles"] = float(len(model.memory.poles))
     ds = xr.Dataset({k: ((), v) for k, v in out.items() if not isinstance(v, str)})
     ds.attrs.update({k: v for k, v in out.items() if k.endswith("_unavailable")})
+    ds.attrs["heave_pitch_radiation"] = "memory" if model.memory is not None else "constant"
     ds["surf_riding_wavelength"] = ("surf_case", np.array(lams))
     ds["surf_riding_melnikov"] = ("surf_case", thr[:, 0])
     ds["surf_riding_surge_only"] = ("surf_case", thr[:, 1])
@@ -376,7 +390,7 @@ def with_condition(model: SixDof, heading_deg: float, speed: float) -> SixDof:
     return out
 
 
-def probability_map(ship: Ship, cfg: dict, progress: bool = False) -> xr.Dataset:
+def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Dataset | None = None) -> xr.Dataset:
     """Capsize and broach probabilities per record over wave heading x speed for one sea state
     (``cfg``: the broaching section's ``map``), with Clopper-Pearson intervals on every cell.
 
@@ -388,7 +402,7 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False) -> xr.Dataset
     mc = cfg["map"]
     lspec = cfg["loadings"][mc["loading"]]
     kg = heavy_kg(ship, float(lspec["kg_above_waterline"])) if "kg_above_waterline" in lspec else lspec.get("kg")
-    base = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), kg)
+    base = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), kg, radiation=radiation)
     sea = Seaway(kind=mc["sea"]["spectrum"], hs=float(mc["sea"]["hs"]), tp=mc["sea"].get("tp"),
                  n_components=int(mc["sea"].get("n_components", 220)))
     heads, speeds = np.asarray(mc["headings_deg"], float), np.asarray(mc["speeds_kn"], float)

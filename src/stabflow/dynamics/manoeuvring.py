@@ -258,13 +258,27 @@ class SixDof:
     heading_deg: float
     length: float
     derivatives: dict
+    #: the heave-pitch radiation memory (:class:`stabflow.dynamics.radiation.Memory`), None for the
+    #: constant coefficients
+    memory: object = None
+
+    @property
+    def n_continuous(self) -> int:
+        """Number of continuous states of the linear theory: q, q' and the memory states."""
+        return 12 + (self.s0.size - K6.S_MEMORY)
+
+    def continuous_index(self) -> np.ndarray:
+        """Indices of those states in the state vector (the roll amplitude, rudder and helm left out)."""
+        return np.r_[0:12, K6.S_MEMORY:self.s0.size]
 
 
 def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, heading_deg: float, speed: float,
-                  man: Manoeuvring, tables: SectionTables | None = None) -> SixDof:
+                  man: Manoeuvring, tables: SectionTables | None = None, memory=None) -> SixDof:
     """Assemble the 6-DOF kernel inputs for a ship (sections, statics, 3-DOF coefficients ``co``),
     water density ``rho`` [kg/m^3], wave heading [degree] relative to the course, commanded
-    ``speed`` [m/s] and the manoeuvring description ``man``."""
+    ``speed`` [m/s] and the manoeuvring description ``man``. With ``memory``
+    (:class:`stabflow.dynamics.radiation.Memory`) heave and pitch radiate through it: their added mass
+    is its A(inf) and their constant damping is replaced by its states (Cummins' equation)."""
     lcg, kg = float(st["lcg"]), float(st["kg"])
     sp = section_parameters(sec, st)
     hp = particulars(sp)
@@ -281,6 +295,15 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     q = 0.5 * rho
     p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
     m = np.zeros(K6.N_M)
+    if memory is not None:
+        from stabflow.dynamics.radiation import memory_parameters
+
+        hp_ = (K.S_Z, K.S_PITCH)
+        for a, i in enumerate(hp_):
+            for b, j in enumerate(hp_):
+                p[K.P_ADDED_MASS + 6 * i + j] = memory.added_mass_inf[a, b]
+                p[K.P_DAMPING + 6 * i + j] = 0.0
+        m = np.concatenate([m, memory_parameters(memory)])
     m[K6.M_SPEED] = speed
     _set_hull_derivatives(m, der, rho, L)
     zh = 0.5 * T if man.side_force_height is None else float(man.side_force_height)
@@ -334,10 +357,10 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     ok = sp["valid"].values
     cd = crossflow_drag_coefficient(sp["breadth"].values, sp["draft"].values)
     strips = np.column_stack([sp["x"].values[ok] - lcg, q * (sp["draft"].values * cd * sp["dx"].values)[ok]])
-    s0 = np.zeros(K6.N_STATE6)
+    s0 = np.zeros(K6.N_STATE6 + (0 if memory is None else memory.n_states))
     s0[:K.N_STATE] = initial_state(sec, st)
     s0[K6.S_HELM] = 1.0
-    return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der)
+    return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der, memory)
 
 
 def hull_derivative_sets(sp: xr.Dataset) -> dict[str, dict | str]:
@@ -437,14 +460,19 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
     return six_dof_dataset(model, states, dt, status)
 
 
+#: allowance for the change of the ship's drift rate along the waves over a chunk [m/s] (the wave line
+#: table covers the drift at the chunk's starting rate plus this either way)
+DRIFT_ALLOWANCE = 2.0
+
+
 def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg: float = 90.0, s0=None,
                 points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 20.0, dtype=np.float32,
                 t0: float = 0.0):
-    """States (n + 1, N_STATE6) of one 6-DOF record, the last step done n and the status (0 ok, 1
-    capsized); the arguments as :func:`simulate_six_dof`, the record starting at time ``t0`` [s] of
-    the waves (a restart from a state inside a record)."""
+    """States (n + 1, state size: N_STATE6 and the memory states) of one 6-DOF record, the last step
+    done n and the status (0 ok, 1 capsized); the arguments as :func:`simulate_six_dof`, the record
+    starting at time ``t0`` [s] of the waves (a restart from a state inside a record)."""
     nsteps = int(round(duration / dt))
-    out = np.empty((nsteps + 1, K6.N_STATE6))
+    out = np.empty((nsteps + 1, model.s0.size))
     out[0] = model.s0 if s0 is None else np.asarray(s0, float)
     per = max(1, int(round(chunk_s / dt)))
     xg = float(model.p[K.P_XG])
@@ -460,7 +488,7 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
         span = (n1 - n0) * dt
         rate = s[K.S_RATE + K.S_X] * cb + s[K.S_RATE + K.S_Y] * sb
         centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb + 0.5 * rate * span
-        reach = hull + (0.5 * abs(rate) + 2.0) * span
+        reach = hull + (0.5 * abs(rate) + DRIFT_ALLOWANCE) * span
         while True:
             ltab, xi0, h, wrap = wave_line(model, waves, t0 + n0 * dt, n1 - n0, dt, centre, reach,
                                            points_per_wavelength, dtype)
@@ -508,26 +536,29 @@ def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -
 
 
 def _linear_system(model: SixDof, eps: float = 1e-6):
-    """(A (12, 12), B (12,), rhs) of the 6-DOF right-hand side about the calm-water straight run:
-    central differences in (q, q') and the rudder angle; ``rhs(s, delta, line)`` evaluates it."""
+    """(A (n, n), B (n,), rhs) of the 6-DOF right-hand side about the calm-water straight run in its
+    n continuous states (q, q' and the radiation memory, :meth:`SixDof.continuous_index`): central
+    differences in them and the rudder angle; ``rhs(s, delta, line)`` evaluates it."""
     args = kernel_args(model.sec, model.tables)
     m = model.m.copy()
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = 0.0, 1.0, 1.0
     nst = len(model.sec.x)
     scratch = (np.zeros(6), np.zeros((nst, 2)), np.zeros((nst, 5)), np.zeros((6, 6)), np.zeros(6))
 
+    idx = model.continuous_index()
+
     def rhs(s, delta, line=np.zeros((2, 3)), mm=m):
-        ds = np.zeros(K6.N_STATE6)
+        ds = np.zeros(model.s0.size)
         K6._rhs6(*args, model.p, mm, model.foils, model.strips, line, s, delta, ds, *scratch)
-        return ds[:12]
+        return ds[idx]
 
     s0 = model.s0
-    A = np.zeros((12, 12))
-    for j in range(12):
+    A = np.zeros((len(idx), len(idx)))
+    for c, j in enumerate(idx):
         sp, sm = s0.copy(), s0.copy()
         sp[j] += eps
         sm[j] -= eps
-        A[:, j] = (rhs(sp, 0.0) - rhs(sm, 0.0)) / (2 * eps)
+        A[:, c] = (rhs(sp, 0.0) - rhs(sm, 0.0)) / (2 * eps)
     B = (rhs(s0, eps) - rhs(s0, -eps)) / (2 * eps)
     return A, B, rhs
 
@@ -546,15 +577,16 @@ def sway_yaw_eigenvalues(model: SixDof) -> np.ndarray:
 
 
 def _closed_loop(model: SixDof, A, B) -> np.ndarray:
-    """The linear state matrix (13, 13) of (q, q', delta) with the autopilot (eq 30) and the servo
-    (eq 31) as a continuous lag."""
+    """The linear state matrix (n + 1, n + 1) of the continuous states (q, q', memory) and delta with
+    the autopilot (eq 30) and the servo (eq 31) as a continuous lag."""
     ga, gb, tau = model.m[K6.M_GA], model.m[K6.M_GB], model.m[K6.M_TAU]
-    M = np.zeros((13, 13))
-    M[:12, :12] = A
-    M[:12, 12] = B
-    M[12, K.S_YAW] = ga / tau
-    M[12, K.S_RATE + K.S_YAW] = gb / tau
-    M[12, 12] = -1.0 / tau
+    n = A.shape[0]
+    M = np.zeros((n + 1, n + 1))
+    M[:n, :n] = A
+    M[:n, n] = B
+    M[n, K.S_YAW] = ga / tau
+    M[n, K.S_RATE + K.S_YAW] = gb / tau
+    M[n, n] = -1.0 / tau
     return M
 
 
@@ -567,17 +599,19 @@ def linearised_course_change(model: SixDof, step_deg: float, duration: float):
 
     A, B, _ = _linear_system(model)
     M = _closed_loop(model, A, B)
-    c = np.zeros(13)
-    c[12] = -model.m[K6.M_GA] * np.radians(step_deg) / model.m[K6.M_TAU]
+    n = M.shape[0]
+    c = np.zeros(n)
+    c[-1] = -model.m[K6.M_GA] * np.radians(step_deg) / model.m[K6.M_TAU]
     t = np.linspace(0.0, duration, int(duration / 0.05) + 1)
-    sol = solve_ivp(lambda _, x: M @ x + c, (0.0, duration), np.zeros(13), t_eval=t, rtol=1e-9, atol=1e-12)
+    sol = solve_ivp(lambda _, x: M @ x + c, (0.0, duration), np.zeros(n), t_eval=t, rtol=1e-9, atol=1e-12)
     return sol.t, np.degrees(sol.y[K.S_YAW])
 
 
 def linear_regular_response(model: SixDof, wavelength: float, amplitude: float = 1.0) -> np.ndarray:
     """Complex amplitudes (6,) of (surge, sway, heave [m], roll, pitch, yaw [rad]) of the steady state in
     a regular wave of ``wavelength`` [m] and ``amplitude`` [m], autopilot on, by the linear frequency-
-    domain solution of the same equations: (i w_e - M) X = F with M the closed loop (13 x 13) and F
+    domain solution of the same equations: (i w_e - M) X = F with M the closed loop (with the
+    radiation memory states when the model has them) and F
     the wave forcing per unit amplitude (the right-hand side's derivative in the wave amplitude at
     two phases), so that x(t) = Re[X exp(i w_e t)] for the wave a cos(k (xi - xi_G) - w_e t) (its
     crest at G's station at t = 0)."""
@@ -598,9 +632,10 @@ def linear_regular_response(model: SixDof, wavelength: float, amplitude: float =
         mm[K6.M_XI0], mm[K6.M_DXI], mm[K6.M_WRAP] = 0.0, wavelength / 32, 32
         f.append((rhs(model.s0, 0.0, lines[0], mm) - rhs(model.s0, 0.0, lines[1], mm)) / (2 * eps))
     # forcing f_c cos(w_e t) + f_s sin(w_e t) = Re[(f_c - i f_s) exp(i w_e t)]
-    F = np.zeros(13, complex)
-    F[:12] = f[0] - 1j * f[1]
-    X = np.linalg.solve(1j * we * np.eye(13) - M, F * amplitude)
+    n = M.shape[0]
+    F = np.zeros(n, complex)
+    F[:n - 1] = f[0] - 1j * f[1]
+    X = np.linalg.solve(1j * we * np.eye(n) - M, F * amplitude)
     return X[:6]
 
 

@@ -91,17 +91,21 @@ def mean_wave_surge_force(model: SixDof, wavelength: float, height: float, speed
     """Mean wave-induced surge force F0 [N] (positive forward) in a regular following wave at each
     ship speed in ``speeds`` [m/s] (module docstring): F0 = k w_e Re(X^H B X) / 2 from the linear
     6-DOF response X (:func:`.manoeuvring.linear_regular_response`) and the linear damping B of the
-    model; 0 at the celerity."""
+    model (with a radiation memory, its heave-pitch damping at the encounter frequency); 0 at the
+    celerity."""
     from stabflow.dynamics.broaching import with_condition
     from stabflow.dynamics.manoeuvring import linear_regular_response
 
     k = 2 * np.pi / wavelength
     c = np.sqrt(G / k)
-    B = model.p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
     out = np.zeros(len(np.atleast_1d(speeds)))
+    hp = np.ix_([K.S_Z, K.S_PITCH], [K.S_Z, K.S_PITCH])
     for i, u in enumerate(np.atleast_1d(np.asarray(speeds, float))):
         if abs(c - u) < 1e-6 * c:
             continue  # w_e = 0: the motions are quasi-static, nothing is dissipated
+        B = model.p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6).copy()
+        if model.memory is not None:  # the memory model's heave-pitch damping at the encounter frequency
+            B[hp] += model.memory.damping([k * (c - u)])[0]
         X = linear_regular_response(with_condition(model, 0.0, float(u)), wavelength, 0.5 * height)
         out[i] = 0.5 * k * k * (c - u) * float(np.real(np.conj(X) @ B @ X))
     return out

@@ -480,7 +480,24 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                                        "clarke": "Clarke et al. (1983)"}.get(str(mcfg.get("added_mass", "capytaine")),
                                                                              "given in the ship file")},
                    surf=surf, figures=figures, pmap=pmap, strip_case=d.attrs.get("strip_case", ""),
-                   strip_loading=d.attrs.get("strip_loading", ""))
+                   strip_loading=d.attrs.get("strip_loading", ""), radiation=_radiation_summary(results, figdir, ship, d))
+
+
+def _radiation_summary(results: Path, figdir: Path, ship: str, d: xr.Dataset) -> dict:
+    """The broaching chapter's account of the heave-pitch radiation: constant coefficients, or the
+    memory model with its BEM frequency range, poles and figure (the radiation step's files)."""
+    if d.attrs.get("heave_pitch_radiation", "constant") != "memory":
+        return {"memory": False}
+    f = results / "hydro" / f"{ship}_radiation.nc"
+    fig = _optional_figures(results, figdir, f"hydro/{ship}_{{}}.png", ("radiation",))["radiation"]
+    if not f.exists():
+        return {"memory": True, "file": None, "figure": fig}
+    with xr.open_dataset(f) as r:
+        w = r["omega"].values
+        return {"memory": True, "file": True, "figure": fig, "w0": float(w[0]), "w1": float(w[-1]), "n": len(w),
+                "poles": int(r.sizes["pole"]), "panels": int(r.attrs["panels"]), "lid": int(r.attrs["lid_panels"]),
+                "radius": float(r.attrs["max_panel_radius"]), "source": str(r.attrs["source"]),
+                "a33": float(r["added_mass_inf"].values[0, 0]), "a55": float(r["added_mass_inf"].values[1, 1])}
 
 
 def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | None:

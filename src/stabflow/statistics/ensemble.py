@@ -78,9 +78,11 @@ class Model:
         return int(np.argmin(np.abs(self.sec.x)))
 
 
-def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Model:
+def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiation: xr.Dataset | None = None) -> Model:
     """Cut the hull at ``cond['stations']``, apply the condition's KG, find the equilibrium,
-    coefficients (Capytaine ``hydro`` if the ship uses it) and the sectional tables."""
+    coefficients (Capytaine ``hydro`` if the ship uses it) and the sectional tables; 6-DOF
+    conditions of a ship with ``manoeuvring.heave_pitch_radiation: memory`` take its memory model
+    from the ``radiation`` step's dataset ``radiation`` (computed now if None)."""
     s = ship.modified(stations=cond["stations"], kg=cond.get("kg"), dynamics=cond.get("dynamics", {}))
     hull = build_hull(s)
     st = compute_statics(s, hull)
@@ -100,9 +102,11 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None) -> Mode
                                 "3-DOF records only (the 6-DOF sway and yaw accelerations are not in it)")
         from stabflow.dynamics.broaching import manoeuvring_from_ship
         from stabflow.dynamics.manoeuvring import build_six_dof
+        from stabflow.dynamics.radiation import ship_memory
 
         six = build_six_dof(sec, st, co, s.rho, float(cond["heading_deg"]), float(cond["speed_kn"]) * KNOT,
-                            manoeuvring_from_ship(s, sec, st), tables=tables)
+                            manoeuvring_from_ship(s, sec, st), tables=tables,
+                            memory=ship_memory(ship, float(st["lcg"]), radiation))
     sea = Seaway.from_config(cond["sea"]) if "sea" in cond else None  # regular-wave studies have none
     model = Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth, co.natural_period("roll"), six, co=co)
     if cond.get("model", "volume") == "derivative":
@@ -142,11 +146,10 @@ def record_table(model: Model, record: int):
 
 
 def state_size(model: Model) -> int:
-    """Length of the state vector of the condition's model (6-DOF carries the rudder and autopilot)."""
+    """Length of the state vector of the condition's model (6-DOF carries the rudder, the autopilot and
+    any heave-pitch radiation memory)."""
     if model.six is not None:
-        from stabflow.dynamics._kernels_6dof import N_STATE6
-
-        return N_STATE6
+        return model.six.s0.size
     return N_STATE
 
 

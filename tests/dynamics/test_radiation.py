@@ -1,0 +1,213 @@
+"""Heave-pitch radiation with memory (issue 17): the state-space model's algebra, the rational fit
+against a known system, the kernel's memory states against the linear frequency-domain solution
+and against constant coefficients at the encounter frequency, and the BEM on a box barge."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from stabflow.constants import G, KNOT
+from stabflow.dynamics import _kernels as K
+from stabflow.dynamics.manoeuvring import Manoeuvring, build_six_dof, linear_regular_response, simulate_six_dof
+from stabflow.dynamics.radiation import (Memory, bem_frequencies, fit_memory, infinite_frequency_estimate,
+                                         memory_from_dataset, radiation_checks, radiation_dataset, retardation)
+from stabflow.dynamics.tables import section_tables
+
+from ..conftest import synthetic_radiation as _synthetic
+from .conftest import ship_model
+
+HP = np.ix_([K.S_Z, K.S_PITCH], [K.S_Z, K.S_PITCH])
+
+
+def test_kernel_and_response_are_one_transform_pair():
+    """K^(w) of the model equals the numerical Fourier-Laplace transform of its K(t) (to 1e-6), and
+    K(t) equals the cosine transform of its damping (Ogilvie), for complex and real poles."""
+    mem = Memory(np.array([-0.4 + 1.1j, -0.9 + 0j]), np.array([[[3.0 + 1.0j, 2.0], [1.0 - 0.5j, -1.0]],
+                                                              [[0.5j, 0.3], [2.0 + 2.0j, 4.0]]]), np.eye(2))
+    t = np.linspace(0.0, 60.0, 60001)
+    kt = mem.kernel(t)
+    for w in (0.3, 1.0, 2.5):
+        num = np.trapezoid(kt * np.exp(-1j * w * t)[:, None, None], t, axis=0)
+        assert np.allclose(num, mem.response([w])[0], rtol=0, atol=1e-6 * np.max(np.abs(num)))
+    wg = np.linspace(1e-4, 200.0, 400001)
+    k_from_b = retardation(wg, mem.damping(wg), np.array([0.0, 0.5, 2.0]))
+    assert np.allclose(k_from_b[1:], mem.kernel([0.5, 2.0]), atol=2e-3 * np.max(np.abs(kt)))
+
+
+def test_fit_recovers_a_known_system_and_its_infinite_frequency_added_mass():
+    """The rational fit of a synthetic fourth-order system recovers its poles (1e-5) and reproduces
+    A(w), B(w) to 1e-6; A(inf) extrapolated from the finite frequencies alone equals the true one to
+    1e-6; the checks pass."""
+    ds, poles = _synthetic()
+    mem = fit_memory(ds, order=4)
+    assert np.sort_complex(mem.poles) == pytest.approx(np.sort_complex(poles), abs=1e-5)
+    w = ds["omega"].values
+    assert np.allclose(mem.damping(w), ds["damping"].values, atol=1e-6 * np.abs(ds["damping"].values).max())
+    assert np.allclose(mem.added_mass(w), ds["added_mass"].values, rtol=1e-6)
+    est = infinite_frequency_estimate(ds, 4)
+    assert np.allclose(est, ds["added_mass_inf"].values, rtol=1e-6)
+    rows = radiation_checks(ds, mem)
+    assert len(rows) == 7 and all(r.status == "PASS" for r in rows)
+    # the chosen order when left to the fit: the smallest within 2 % (at most the true one)
+    assert len(fit_memory(ds).poles) <= 2
+
+
+def test_checks_fail_when_the_fit_misses():
+    """A first-order fit of the fourth-order system misses by more than the 5 % tolerance: FAIL."""
+    ds, _ = _synthetic()
+    rows = radiation_checks(ds, fit_memory(ds, order=1))
+    assert any(r.status == "FAIL" for r in rows)
+
+
+def test_stored_model_round_trips():
+    ds, _ = _synthetic()
+    mem = fit_memory(ds, order=4)
+    back = memory_from_dataset(radiation_dataset(ds, mem))
+    assert np.array_equal(back.poles, mem.poles) and np.array_equal(back.residues, mem.residues)
+
+
+def test_bem_frequencies_follow_the_panel_rule():
+    """The last frequency's deep-water wavelength is at least 13 largest panel radii, and the next
+    step's would not be."""
+    w = bem_frequencies(0.598)
+    assert w[0] == pytest.approx(0.1) and np.allclose(np.diff(w), 0.1)
+    lam = 2 * np.pi * G / w**2
+    assert lam[-1] >= 13 * 0.598 > 2 * np.pi * G / (w[-1] + 0.1) ** 2
+
+
+@pytest.fixture(scope="module")
+def trawler_memory():
+    """The trawler with constant coefficients and with a synthetic heave-pitch memory."""
+    ship, sec, st, co = ship_model("trawler")
+    ds, _ = _synthetic()
+    mem = fit_memory(ds, order=4)
+    tabs = section_tables(sec, 181, 101)
+    from stabflow.dynamics.manoeuvring import Foil
+
+    man = Manoeuvring(foils=(Foil(x=-10.4, z=1.45, span=2.9, chord=0.43, rudder=True),),
+                      added_mass=np.diag([1.0e4, 1.0e5, 3.0e6]), hull="slender_body")
+    build = lambda memory=None, heading=45.0: build_six_dof(sec, st, co, ship.rho, heading, 10.0 * KNOT, man,
+                                                            tables=tabs, memory=memory)
+    return build, mem
+
+
+def test_memory_states_equal_constant_coefficients_at_the_encounter_frequency(trawler_memory):
+    """The linear response of the memory model equals that of the constant-coefficient model whose
+    heave-pitch added mass and damping are the memory model's A(w_e), B(w_e) (to 1e-6): the kernel's
+    states are the fitted transfer function."""
+    build, mem = trawler_memory
+    m = build(mem)
+    assert m.s0.size == 16 + mem.n_states
+    lam = 30.0
+    k = 2 * np.pi / lam
+    we = np.sqrt(G * k) - k * m.speed * np.cos(np.radians(45.0))
+    const = build()
+    p = const.p.copy()
+    A = p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
+    B = p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
+    A[HP] = mem.added_mass([we])[0]
+    B[HP] = mem.damping([we])[0]
+    p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36] = A.ravel()
+    p[K.P_DAMPING:K.P_DAMPING + 36] = B.ravel()
+    from dataclasses import replace
+
+    x_mem = linear_regular_response(m, lam, 1.0)
+    x_const = linear_regular_response(replace(const, p=p), lam, 1.0)
+    assert np.allclose(x_mem, x_const, rtol=1e-5, atol=1e-7 * np.max(np.abs(x_const)))
+    # and the memory changes the heave-pitch response against the ship file's constants
+    assert abs(abs(x_mem[2]) / abs(linear_regular_response(const, lam, 1.0)[2]) - 1.0) > 0.01
+
+
+def test_memory_time_domain_against_the_linear_solution(trawler_memory):
+    """Small stern-quartering waves (H/lambda 1/2000), autopilot on: the 6-DOF record with the memory
+    states has the first harmonics of its linear frequency-domain solution within 0.5 %."""
+    from stabflow.dynamics.manoeuvring import first_harmonic
+
+    build, mem = trawler_memory
+    m = build(mem)
+    lam = 21.7
+    a = lam / 4000
+    k = 2 * np.pi / lam
+    w = np.sqrt(G * k)
+    we = w - k * m.speed * np.cos(np.radians(45.0))
+    X = linear_regular_response(m, lam, a)
+    xi_g = float(m.p[K.P_XG]) * np.cos(np.radians(45.0))
+    ds = simulate_six_dof(m, (np.array([a]), np.array([w]), np.array([-k * xi_g])), 300.0, 0.05, ramp_s=50.0)
+    fh = first_harmonic(ds, we, 165.0)
+    for v, ref in zip(("heave", "pitch", "roll"), (abs(X[2]), np.degrees(abs(X[4])), np.degrees(abs(X[3])))):
+        assert fh[v] == pytest.approx(ref, rel=0.005), v
+
+
+def test_mean_wave_force_uses_the_damping_at_the_encounter_frequency(trawler_memory):
+    """F0 of the memory model equals F0 of the constant model given the memory's A, B at w_e."""
+    from dataclasses import replace
+
+    from stabflow.dynamics.surf_riding import mean_wave_surge_force
+
+    build, mem = trawler_memory
+    m = build(mem, heading=0.0)
+    lam, u = 42.7, 3.0
+    k = 2 * np.pi / lam
+    we = k * (np.sqrt(G / k) - u)
+    const = build(heading=0.0)
+    p = const.p.copy()
+    A = p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
+    B = p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
+    A[HP] = mem.added_mass([we])[0]
+    B[HP] = mem.damping([we])[0]
+    p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36] = A.ravel()
+    p[K.P_DAMPING:K.P_DAMPING + 36] = B.ravel()
+    f_mem = mean_wave_surge_force(m, lam, 1.8, [u])[0]
+    f_const = mean_wave_surge_force(replace(const, p=p), lam, 1.8, [u])[0]
+    assert f_mem == pytest.approx(f_const, rel=1e-5)
+
+
+def test_box_barge_bem_and_fit():
+    """Capytaine on the box barge (4 m panels, a few frequencies): symmetric-shaped positive heave
+    damping, A(inf) below A(0.2 rad/s), and a fit within the checks' 5 % on its own data."""
+    from stabflow.dynamics.hydro import bem_mesh
+    from stabflow.dynamics.radiation import bem_radiation
+    from stabflow.hydrostatics.statics import equilibrium
+
+    ship, sec, st, co = ship_model("barge")
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    w = np.array([0.2, 0.4, 0.6, 0.8, 1.0])
+    ds = bem_radiation(bem_mesh(ship), h0, th0, float(st["lcg"]), float(st["kg"]), ship.rho, w)
+    B = ds["damping"].values
+    assert np.all(B[:, 0, 0] > 0) and np.all(B[:, 1, 1] > 0)
+    assert ds["added_mass_inf"].values[0, 0] < ds["added_mass"].values[0, 0, 0]
+    mem = fit_memory(ds)
+    assert all(np.real(mem.poles) < 0)
+    assert ds.attrs["lid_panels"] > 0
+
+
+def test_ship_memory_follows_the_config_and_refuses_another_lcg():
+    """The trawler's config asks for the memory model, the barge's does not; a radiation dataset about
+    another LCG is refused with the ship file and field named."""
+    from stabflow import StabflowError
+    from stabflow.config import load_ship
+    from stabflow.dynamics.radiation import ship_memory, uses_memory
+
+    from ..conftest import SHIPS, synthetic_memory_dataset
+
+    trawler, barge = load_ship(SHIPS / "trawler.yaml"), load_ship(SHIPS / "barge.yaml")
+    assert uses_memory(trawler) and not uses_memory(barge)
+    assert ship_memory(barge, 0.0) is None
+    rad = synthetic_memory_dataset(-0.81)
+    assert ship_memory(trawler, -0.81, rad).n_states == 8
+    with pytest.raises(StabflowError, match="trawler.yaml: manoeuvring.heave_pitch_radiation"):
+        ship_memory(trawler, 0.5, rad)
+
+
+def test_radiation_command_refuses_a_ship_without_the_memory_model(tmp_path):
+    """`stabflow radiation` on a ship that keeps the constant coefficients: one error line naming the
+    file and field, exit status 2, nothing written."""
+    import subprocess
+    import sys
+
+    from ..conftest import SHIPS
+
+    out = tmp_path / "barge_radiation.nc"
+    r = subprocess.run([sys.executable, "-m", "stabflow.cli", "radiation", str(SHIPS / "barge.yaml"), "-o", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "manoeuvring.heave_pitch_radiation" in r.stderr and not out.exists()
