@@ -330,22 +330,33 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "ea_height_above_g": ("m", "height of the crew location above G"),
     "ea_roll_period": ("s", "undamped natural roll period of the 3-DOF model"),
     "ea_acceleration_per_roll": ("m/s2", "lateral acceleration per radian of roll at the natural period, g + 4 pi^2 h / T^2"),
-    # heave-pitch radiation with memory (radiation step, issue 17): 2 x 2 matrices over (i, j) in
-    # (heave [m], pitch [rad]), so entries carry kg, kg m or kg m2 (added mass), N s/m, N s or N m s
-    # (damping) and N/m, N or N m per second (retardation functions)
-    "omega": ("rad/s", "wave frequency of the BEM"),
-    "added_mass": ("SI", "heave-pitch added mass A_ij(w) from the BEM (kg, kg m, kg m2)"),
-    "damping": ("SI", "heave-pitch radiation damping B_ij(w) from the BEM (N s/m, N s, N m s)"),
-    "added_mass_inf": ("SI", "heave-pitch added mass at infinite frequency from the BEM (kg, kg m, kg m2)"),
-    "added_mass_fit": ("SI", "A_ij(w) of the fitted memory model: A(inf) + Im K^(w) / w"),
-    "damping_fit": ("SI", "B_ij(w) of the fitted memory model: Re K^(w)"),
-    "kernel": ("SI", "retardation function K_ij(t) = (2/pi) int B_ij(w) cos(w t) dw of the BEM's B up to its last frequency"),
-    "kernel_fit": ("SI", "retardation function of the fitted memory model, sum_p Re(c_ijp exp(l_p t))"),
-    "pole_re": ("1/s", "real part of a pole l_p of the fitted memory model"),
-    "pole_im": ("rad/s", "imaginary part of a pole l_p of the fitted memory model"),
-    "residue_re": ("SI", "real part of the residue c_ijp of the fitted memory model"),
-    "residue_im": ("SI", "imaginary part of the residue c_ijp of the fitted memory model"),
 }
+
+
+#: the radiation step's 2 x 2 entries on disk (issue 17, heave-pitch memory model): suffix, (i, j) and
+#: the units of an added mass, a damping and a retardation function (or residue) there
+RADIATION_ENTRIES = (("33", (0, 0), "kg", "N s/m", "N/(m s)"), ("35", (0, 1), "kg m", "N s", "N/s"),
+                     ("53", (1, 0), "kg m", "N s", "N/s"), ("55", (1, 1), "kg m2", "N m s", "N m/s"))
+#: the radiation step's quantities written entry by entry: name, dims before (i, j), which of the
+#: entry's units (index in RADIATION_ENTRIES' rows), long name
+RADIATION_QUANTITIES = (
+    ("added_mass", ("radiation_omega",), 2, "added mass A(w) from the BEM"),
+    ("damping", ("radiation_omega",), 3, "radiation damping B(w) from the BEM"),
+    ("added_mass_inf", (), 2, "added mass at infinite frequency from the BEM"),
+    ("added_mass_fit", ("radiation_omega",), 2, "added mass A(w) of the fitted memory model, A(inf) + Im K^(w) / w"),
+    ("damping_fit", ("radiation_omega",), 3, "radiation damping B(w) of the fitted memory model, Re K^(w)"),
+    ("kernel", ("time",), 4, "retardation function (2/pi) int B(w) cos(w t) dw of the BEM's B up to its last frequency"),
+    ("kernel_fit", ("time",), 4, "retardation function of the fitted memory model, sum_p Re(c_p exp(l_p t))"),
+    ("residue_re", ("pole",), 4, "real part of the residue c_p of the fitted memory model"),
+    ("residue_im", ("pole",), 4, "imaginary part of the residue c_p of the fitted memory model"),
+)
+_RADIATION_MODES = {"33": "heave-heave", "35": "heave force per pitch", "53": "pitch moment per heave",
+                    "55": "pitch-pitch"}
+CF_ATTRS.update({f"radiation_{q}_{e[0]}": (e[u], f"{_RADIATION_MODES[e[0]]} {long}")
+                 for q, _, u, long in RADIATION_QUANTITIES for e in RADIATION_ENTRIES})
+CF_ATTRS.update({"radiation_omega": ("rad/s", "wave frequency of the heave-pitch BEM"),
+                 "pole_re": ("1/s", "real part of a pole l_p of the fitted memory model"),
+                 "pole_im": ("rad/s", "imaginary part of a pole l_p of the fitted memory model")})
 
 
 def annotate(ds: xr.Dataset) -> xr.Dataset:

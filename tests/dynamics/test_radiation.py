@@ -9,8 +9,9 @@ import xarray as xr
 from stabflow.constants import G, KNOT
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics.manoeuvring import Manoeuvring, build_six_dof, linear_regular_response, simulate_six_dof
-from stabflow.dynamics.radiation import (Memory, bem_frequencies, fit_memory, infinite_frequency_estimate,
-                                         memory_from_dataset, radiation_checks, radiation_dataset, retardation)
+from stabflow.dynamics.radiation import (Memory, bem_frequencies, bem_from_dataset, fit_memory,
+                                         infinite_frequency_estimate, memory_from_dataset, model_order, passivity,
+                                         radiation_checks, radiation_dataset, retardation)
 from stabflow.dynamics.tables import section_tables
 
 from ..conftest import synthetic_radiation as _synthetic
@@ -47,16 +48,41 @@ def test_fit_recovers_a_known_system_and_its_infinite_frequency_added_mass():
     est = infinite_frequency_estimate(ds, 4)
     assert np.allclose(est, ds["added_mass_inf"].values, rtol=1e-6)
     rows = radiation_checks(ds, mem)
-    assert len(rows) == 7 and all(r.status == "PASS" for r in rows)
+    assert len(rows) == 9 and all(r.status == "PASS" for r in rows)
     # the chosen order when left to the fit: the smallest within 2 % (at most the true one)
-    assert len(fit_memory(ds).poles) <= 2
+    assert model_order(fit_memory(ds)) <= 4
+    # no damping at zero frequency: K^(0) = 0
+    assert np.max(np.abs(mem.response([1e-9]))) < 1e-6 * np.max(np.abs(ds["damping"].values))
 
 
 def test_checks_fail_when_the_fit_misses():
-    """A first-order fit of the fourth-order system misses by more than the 5 % tolerance: FAIL."""
+    """A second-order fit (one pole pair) of the fourth-order system misses by more than the 5 %
+    tolerance: its damping and added-mass rows FAIL."""
     ds, _ = _synthetic()
-    rows = radiation_checks(ds, fit_memory(ds, order=1))
-    assert any(r.status == "FAIL" for r in rows)
+    rows = radiation_checks(ds, fit_memory(ds, order=2))
+    assert sum(r.status == "FAIL" for r in rows if "of the fit vs the BEM" in r.check) >= 2
+
+
+def test_passivity_flags_negative_heave_damping():
+    """A system whose heave damping dips to about -20 % of its peak near 0.3 rad/s (a negative
+    resonant term) while the pitch damping, 23 times larger in its units, stays positive: fitted
+    exactly, it is not passive (scaled by the diagonal the smallest eigenvalue is below -0.1; unscaled
+    by the largest entry it would be about -0.01) and the passivity row FAILs."""
+    ds, _ = _synthetic()
+    assert passivity(fit_memory(ds, order=4), 3.0) > -1e-9
+    w = ds["omega"].values
+    s_ = 1j * w
+    H = ds["damping"].values + 1j * w[:, None, None] * (ds["added_mass"].values - ds["added_mass_inf"].values)
+    peak = ds["damping"].values[:, 0, 0].max()
+    H[:, 0, 0] -= 0.3 * peak * 2 * 0.1 * 0.3 * s_ / (s_**2 + 2 * 0.1 * 0.3 * s_ + 0.09)
+    bad = ds.copy(deep=True)
+    bad["damping"].values[:] = H.real
+    bad["added_mass"].values[:] = ds["added_mass_inf"].values + H.imag / w[:, None, None]
+    assert bad["damping"].values[:, 0, 0].min() < -0.1 * peak
+    mem = fit_memory(bad, order=6)
+    assert passivity(mem, 3.0) < -0.1
+    rows = [r for r in radiation_checks(bad, mem) if "passive" in r.check]
+    assert rows[0].status == "FAIL"
 
 
 def test_stored_model_round_trips():
@@ -96,6 +122,11 @@ def test_memory_states_equal_constant_coefficients_at_the_encounter_frequency(tr
     heave-pitch added mass and damping are the memory model's A(w_e), B(w_e) (to 1e-6): the kernel's
     states are the fitted transfer function."""
     build, mem = trawler_memory
+    # asymmetric residues, so that a swap of i and j between the parameters and the kernel shows
+    res = mem.residues.copy()
+    res[0, 1] *= 1.3
+    res[1, 0] *= 0.7
+    mem = Memory(mem.poles, res, mem.added_mass_inf)
     m = build(mem)
     assert m.s0.size == 16 + mem.n_states
     lam = 30.0
@@ -177,8 +208,13 @@ def test_box_barge_bem_and_fit():
     assert np.all(B[:, 0, 0] > 0) and np.all(B[:, 1, 1] > 0)
     assert ds["added_mass_inf"].values[0, 0] < ds["added_mass"].values[0, 0, 0]
     mem = fit_memory(ds)
-    assert all(np.real(mem.poles) < 0)
     assert ds.attrs["lid_panels"] > 0
+    rows = radiation_checks(ds, mem)
+    assert all(r.status == "PASS" for r in rows if "of the fit vs the BEM" in r.check or "passive" in r.check)
+    # the results file round-trips the BEM coefficients and the model
+    back = bem_from_dataset(radiation_dataset(ds, mem))
+    assert np.array_equal(back["damping"].values, ds["damping"].values)
+    assert np.array_equal(back["added_mass_inf"].values, ds["added_mass_inf"].values)
 
 
 def test_ship_memory_follows_the_config_and_refuses_another_lcg():
@@ -197,6 +233,20 @@ def test_ship_memory_follows_the_config_and_refuses_another_lcg():
     assert ship_memory(trawler, -0.81, rad).n_states == 8
     with pytest.raises(StabflowError, match="trawler.yaml: manoeuvring.heave_pitch_radiation"):
         ship_memory(trawler, 0.5, rad)
+    rad.attrs.update(ship="barge")
+    with pytest.raises(StabflowError, match="of ship 'barge'"):
+        ship_memory(trawler, -0.81, rad)
+
+
+def test_step_too_long_for_the_memory_poles_is_refused(trawler_memory):
+    """RK4 with |l| dt beyond 2.5 is refused with the largest step named."""
+    from stabflow import StabflowError
+
+    build, mem = trawler_memory
+    m = build(mem)
+    fast = float(np.max(np.abs(mem.poles)))
+    with pytest.raises(StabflowError, match="too long for the heave-pitch memory model"):
+        simulate_six_dof(m, ([], [], []), 10.0, 2.6 / fast)
 
 
 def test_radiation_command_refuses_a_ship_without_the_memory_model(tmp_path):

@@ -176,7 +176,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
     from stabflow.dynamics.surf_riding import melnikov_threshold, simulated_threshold
     from stabflow.validation import Check
 
-    from stabflow.dynamics.radiation import radiation_checks, ship_radiation, uses_memory
+    from stabflow.dynamics.radiation import bem_from_dataset, radiation_checks, ship_radiation, uses_memory
 
     if radiation is None and uses_memory(ship):
         radiation = ship_radiation(ship)
@@ -339,7 +339,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
                 rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
                                          "-", ref, kind="consistency", tolerance=0.05))
     if model.memory is not None:
-        rows.extend(radiation_checks(radiation, model.memory))
+        rows.extend(radiation_checks(bem_from_dataset(radiation), model.memory))
         out["memory_poles"] = float(len(model.memory.poles))
     ds = xr.Dataset({k: ((), v) for k, v in out.items() if not isinstance(v, str)})
     ds.attrs.update({k: v for k, v in out.items() if k.endswith("_unavailable")})

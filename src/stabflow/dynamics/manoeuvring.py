@@ -262,11 +262,6 @@ class SixDof:
     #: constant coefficients
     memory: object = None
 
-    @property
-    def n_continuous(self) -> int:
-        """Number of continuous states of the linear theory: q, q' and the memory states."""
-        return 12 + (self.s0.size - K6.S_MEMORY)
-
     def continuous_index(self) -> np.ndarray:
         """Indices of those states in the state vector (the roll amplitude, rudder and helm left out)."""
         return np.r_[0:12, K6.S_MEMORY:self.s0.size]
@@ -460,6 +455,25 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
     return six_dof_dataset(model, states, dt, status)
 
 
+#: the largest |l| dt of a radiation memory pole l [-]: RK4's stability limit on the real axis is 2.785
+#: (on the imaginary axis 2.83); beyond it the memory states would grow or lose their accuracy
+MEMORY_STEP_LIMIT = 2.5
+
+
+def _check_memory(model: SixDof, dt: float) -> None:
+    """Refuse a record whose state vector and manoeuvring vector disagree on the memory states, or
+    whose step is too long for the fastest memory pole (the kernel checks neither)."""
+    n = int(model.m[K6.M_MEMORY]) if model.m.size > K6.M_MEMORY else 0
+    if model.s0.size != K6.N_STATE6 + 4 * n:
+        raise StabflowError(f"6-DOF model: {model.s0.size} states for {n} radiation memory poles "
+                            f"(expected {K6.N_STATE6 + 4 * n})")
+    if model.memory is not None:
+        fast = float(np.max(np.abs(model.memory.poles)))
+        if fast * dt > MEMORY_STEP_LIMIT:
+            raise StabflowError(f"6-DOF model: step {dt:g} s too long for the heave-pitch memory model (its fastest "
+                                f"pole |l| = {fast:.3g} 1/s needs dt <= {MEMORY_STEP_LIMIT / fast:.3g} s)")
+
+
 #: allowance for the change of the ship's drift rate along the waves over a chunk [m/s] (the wave line
 #: table covers the drift at the chunk's starting rate plus this either way)
 DRIFT_ALLOWANCE = 2.0
@@ -471,6 +485,7 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
     """States (n + 1, state size: N_STATE6 and the memory states) of one 6-DOF record, the last step
     done n and the status (0 ok, 1 capsized); the arguments as :func:`simulate_six_dof`, the record
     starting at time ``t0`` [s] of the waves (a restart from a state inside a record)."""
+    _check_memory(model, dt)
     nsteps = int(round(duration / dt))
     out = np.empty((nsteps + 1, model.s0.size))
     out[0] = model.s0 if s0 is None else np.asarray(s0, float)

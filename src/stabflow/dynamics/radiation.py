@@ -11,20 +11,29 @@ retardation functions,
     K_ij(t) = (2 / pi) int_0^inf B_ij(w) cos(w t) dw                     (Ogilvie 1964),
 
 q the heave of G [m] and the pitch [rad], with A(w), B(w) and A(inf) of the hull at its calm-water
-equilibrium about G from Capytaine (linear potential flow at zero speed; the forward-speed terms of
-strip theory are left out, as in the constant model).
+equilibrium about G from Capytaine (linear potential flow at zero speed).
+
+Left out, and the main limitation: the forward-speed terms of the radiation. Strip theory's
+(Salvesen, Tuck & Faltinsen 1970) grow as the encounter frequency falls (B35, B53 -+ U A33;
+A35, A53 +- U B33 / w_e^2; A55 + U^2 A33 / w_e^2, B55 + U^2 B33 / w_e^2), which is where surf-riding
+happens; the constant model left them out as well.
 
 The convolution runs as a state-space system. Its frequency response K^(w) = int_0^inf K(t)
 exp(-i w t) dt = B(w) + i w (A(w) - A(inf)) is fitted in the frequency domain (Perez & Fossen 2009)
 by one rational function of the four entries with a common denominator (Sanathanan & Koerner's
-iteration), of relative degree 1 and with a zero at s = 0; its poles l_p and residues give
-K_ij(t) = sum_p Re(c_ijp exp(l_p t)) (Im l_p >= 0), so each velocity q'_j drives the complex states
-w_jp' = l_p w_jp + q'_j and the force is mu_i = sum_jp Re(c_ijp w_jp). The fit extends the
-coefficients beyond the BEM's last frequency with the rational function's decay; the BEM stops
-where the longest panel radius is a tenth of the wavelength (:func:`bem_frequencies`: above it the
-trawler's damping turned negative). Checks: the fitted A(w), B(w) against Capytaine's (the fit), and
-A(inf) extrapolated from the finite-frequency coefficients alone against Capytaine's
-infinite-frequency solution (causality of the BEM data, Kramers-Kronig).
+iteration), of relative degree 1 and with a zero at s = 0 (K^(0) = 0: no damping at zero
+frequency); its poles l_p and residues give K_ij(t) = sum_p Re(c_ijp exp(l_p t)) (Im l_p >= 0), so
+each velocity q'_j drives the complex states w_jp' = l_p w_jp + q'_j and the force is
+mu_i = sum_jp Re(c_ijp w_jp). The fit extends the coefficients beyond the BEM's last frequency with
+the rational function's decay; the BEM stops where the wavelength is 13 largest panel radii
+(:func:`bem_frequencies`; Capytaine itself warns below 8, where the trawler's damping turned
+negative). Checks: the fitted A(w), B(w) against Capytaine's (the fit), A(inf) extrapolated from
+the finite-frequency coefficients alone against Capytaine's infinite-frequency solution (causality
+of the BEM data, Kramers-Kronig), and passivity of the fitted damping.
+
+On disk (:func:`radiation_dataset`) each 2 x 2 quantity is written entry by entry (``_33``, ``_35``,
+``_53``, ``_55``: heave-heave, heave force per pitch, pitch moment per heave, pitch-pitch), each with
+its own units.
 """
 
 from __future__ import annotations
@@ -35,6 +44,8 @@ import numpy as np
 import xarray as xr
 
 from stabflow.constants import G
+from stabflow.io import RADIATION_ENTRIES as ENTRIES
+from stabflow.io import RADIATION_QUANTITIES as QUANTITIES
 from stabflow.io import annotate
 
 #: Capytaine's names of the two modes, in the order of the kernel's (heave, pitch)
@@ -157,6 +168,15 @@ class Memory:
         return 4 * len(self.poles)
 
 
+def _entry_scale(H: np.ndarray) -> np.ndarray:
+    """Weights (4,) of the four responses (rows of ``H``: 33, 35, 53, 55): 1 / sqrt(max|H_ii| max|H_jj|),
+    so the coupling is weighed in the units of the diagonal it couples (a hull symmetric fore and aft
+    has a coupling of round-off size, which its own maximum would blow up to the diagonal's weight)."""
+    d = np.max(np.abs(H[[0, 3]]), axis=1)
+    d = np.where(d > 0.0, d, 1.0)
+    return 1.0 / np.sqrt(np.array([d[0] * d[0], d[0] * d[1], d[1] * d[0], d[1] * d[1]]))
+
+
 def _sk_fit(s: np.ndarray, H: np.ndarray, n: int, nnum: int, iterations: int = 30) -> tuple[np.ndarray, np.ndarray]:
     """Rational least squares H_r(s) ~ N_r(s) / Q(s) with one denominator for all responses
     (Sanathanan & Koerner 1963: the linearised problem N - H Q = 0 reweighted by 1 / |Q| of the last
@@ -164,7 +184,7 @@ def _sk_fit(s: np.ndarray, H: np.ndarray, n: int, nnum: int, iterations: int = 3
     (scaled) Laplace variable i w, ``H`` (nr, nw). Returns the ascending coefficients q (n + 1,) and
     N (nr, nnum + 1)."""
     nr, nw = H.shape
-    scale = 1.0 / np.max(np.abs(H), axis=1)
+    scale = _entry_scale(H)
     wgt = np.ones(nw)
     sp = s[None, :] ** np.arange(max(n, nnum) + 1)[:, None]  # (k, nw) powers of s
     q = np.r_[np.zeros(n), 1.0]
@@ -185,32 +205,40 @@ def _sk_fit(s: np.ndarray, H: np.ndarray, n: int, nnum: int, iterations: int = 3
     return q, N
 
 
-def _residues(s: np.ndarray, H: np.ndarray, poles: np.ndarray) -> np.ndarray:
-    """Residues (nr, np) of H_r(s) = sum_p r_p / (s - l_p) for fixed poles (complex ones in conjugate
-    pairs, given once with Im > 0), least squares with real kernels: each pair contributes
-    c / (s - l) + conj(c) / (s - conj(l)), a real pole c / (s - l) with c real."""
-    cols, kind = [], []
+def _residues(s: np.ndarray, H: np.ndarray, poles: np.ndarray, with_slope: bool = False):
+    """Residues (nr, np) of H_r(s) = sum_p r_p / (s - l_p) [+ s a_r] for fixed poles (complex ones in
+    conjugate pairs, given once with Im > 0), least squares with real unknowns: each pair contributes
+    c / (s - l) + conj(c) / (s - conj(l)) with c = a + i b, a real pole c / (s - l) with c real, and
+    ``with_slope`` a real a_r (then returned as well, (nr,)). The zero at s = 0 (H(0) = 0) is kept as
+    a constraint (a row weighted 1e6 times the data's)."""
+    cols, zero = [], []
     for lp in poles:
         h1, h2 = 1.0 / (s - lp), 1.0 / (s - np.conj(lp))
         if lp.imag > 0.0:
-            cols += [h1 + h2, 1j * (h1 - h2)]  # c = a + i b: a (h1 + h2) + b i (h1 - h2)
-            kind += [(len(cols) - 2, 1.0), (len(cols) - 1, 1j)]
+            cols += [h1 + h2, 1j * (h1 - h2)]
+            zero += [2.0 * np.real(-1.0 / lp), 2.0 * np.real(-1j / lp)]  # (a, b) terms of H(0)
         else:
             cols.append(h1)
-            kind.append((len(cols) - 1, 1.0))
+            zero.append(np.real(-1.0 / lp))
+    if with_slope:
+        cols.append(s)
+        zero.append(0.0)
     X = np.column_stack(cols)
+    z = np.asarray(zero)
     out = np.zeros((H.shape[0], len(poles)), complex)
+    slope = np.zeros(H.shape[0])
+    scale = _entry_scale(H)
     for r in range(H.shape[0]):
-        w = 1.0 / np.max(np.abs(H[r]))
-        x = np.linalg.lstsq(np.vstack([(X * w).real, (X * w).imag]), np.r_[(H[r] * w).real, (H[r] * w).imag],
-                            rcond=None)[0]
-        c = np.zeros(len(poles), complex)
+        w = scale[r]
+        big = 1e6 * np.sqrt(len(s)) / np.max(np.abs(z))
+        M = np.vstack([(X * w).real, (X * w).imag, big * w * z[None, :]])
+        x = np.linalg.lstsq(M, np.r_[(H[r] * w).real, (H[r] * w).imag, 0.0], rcond=None)[0]
         j = 0
         for p, lp in enumerate(poles):
-            c[p] = x[j] + (1j * x[j + 1] if lp.imag > 0.0 else 0.0)
+            out[r, p] = x[j] + (1j * x[j + 1] if lp.imag > 0.0 else 0.0)
             j += 2 if lp.imag > 0.0 else 1
-        out[r] = c
-    return out
+        slope[r] = x[-1] if with_slope else 0.0
+    return (out, slope) if with_slope else out
 
 
 def _poles(q: np.ndarray, scale: float) -> np.ndarray:
@@ -227,8 +255,13 @@ def fit_memory(ds: xr.Dataset, order: int | None = None, max_order: int = 10, to
     (:func:`bem_radiation`) in the frequency domain (Perez & Fossen 2009): the four responses
     K^_ij(i w) = B_ij(w) + i w (A_ij(w) - A_ij(inf)) by one rational function of relative degree 1
     with a zero at s = 0 (K(0) finite, K^(0) = 0), common denominator of degree ``order`` or the
-    smallest up to ``max_order`` whose largest error is within ``tolerance`` of each response's
-    largest |K^| (else the best); unstable poles reflected, residues refitted to the stable poles."""
+    smallest up to ``max_order`` whose largest error is within ``tolerance`` of the largest |K^| of
+    the diagonal entries (:func:`_entry_scale`; else the best); unstable poles reflected, residues refitted to the stable poles.
+    The order is at most 0.8 times the number of frequencies (the real unknowns, about 5 per degree,
+    stay below the 8 equations per frequency by a factor of 2); a fit that is not passive
+    (:func:`passivity`) or has a pole of damping ratio below MIN_POLE_DAMPING (a resonance of the
+    fit between data points, which would ring in the time domain) is taken only if nothing else
+    is."""
     omega = ds["omega"].values
     A, B = ds["added_mass"].values, ds["damping"].values
     a_inf = ds["added_mass_inf"].values
@@ -236,7 +269,8 @@ def fit_memory(ds: xr.Dataset, order: int | None = None, max_order: int = 10, to
     sc = float(omega[-1])
     s = 1j * omega / sc
     best = None
-    for n in ([order] if order is not None else range(2, max_order + 1)):
+    top = max(2, min(max_order, int(0.8 * len(omega))))
+    for n in ([order] if order is not None else range(2, top + 1)):
         q, _ = _sk_fit(s, H, n, n - 1)
         lam = _poles(q, sc)
         res = _residues(1j * omega, H, lam)  # residues of K^ in s = i w (unscaled)
@@ -244,9 +278,10 @@ def fit_memory(ds: xr.Dataset, order: int | None = None, max_order: int = 10, to
         c = np.where(lam.imag > 0.0, 2.0, 1.0)[None, :] * res
         mem = Memory(lam, c.reshape(2, 2, len(lam)), a_inf)
         Hf = mem.response(omega).reshape(len(omega), 4).T
-        err = float(np.max(np.abs(Hf - H) / np.max(np.abs(H), axis=1, keepdims=True)))
+        err = float(np.max(np.abs(Hf - H) * _entry_scale(H)[:, None]))
         # a fit that would feed energy into the motions somewhere is taken only if nothing else is
-        key = (passivity(mem, sc) < -PASSIVITY_TOLERANCE, err)
+        ratio = float(np.min(-lam.real / np.abs(lam)))
+        key = (passivity(mem, sc) < -PASSIVITY_TOLERANCE or ratio < MIN_POLE_DAMPING, err)
         if best is None or key < best[0]:
             best = (key, mem)
         if not key[0] and err <= tolerance:
@@ -254,32 +289,43 @@ def fit_memory(ds: xr.Dataset, order: int | None = None, max_order: int = 10, to
     return best[1]
 
 
+#: smallest damping ratio -Re(l) / |l| of a fitted pole (the trawler's lightest: 0.013)
+MIN_POLE_DAMPING = 0.005
 #: largest negative eigenvalue of the fitted damping, relative to its largest, that counts as passive
 PASSIVITY_TOLERANCE = 0.01
 
 
 def passivity(mem: Memory, w_max: float) -> float:
-    """Smallest eigenvalue of the symmetric part of the fitted damping B(w) over 0 < w <= 4 ``w_max``
-    [rad/s], relative to the largest |B_ij| there: >= 0 for a passive radiation model (the hull can
-    only take energy out of the motions), negative where the fit would feed energy in."""
+    """Smallest eigenvalue over 0 < w <= 4 ``w_max`` [rad/s] of the symmetric part of the fitted
+    damping B(w) scaled by its diagonal, D^-1/2 B D^-1/2 with D_ii the largest B_ii(w) (heave and
+    pitch in their own units): >= 0 for a passive radiation model (the hull can only take energy out
+    of the motions), negative where the fit would feed energy in (-0.2: a heave damping down to
+    -20 % of its peak)."""
     w = np.linspace(1e-3 * w_max, 4.0 * w_max, 801)
     b = mem.damping(w)
-    sym = 0.5 * (b + np.transpose(b, (0, 2, 1)))
-    return float(np.min(np.linalg.eigvalsh(sym)) / np.max(np.abs(b)))
+    d = np.sqrt(np.maximum(np.max(np.abs(np.diagonal(b, axis1=1, axis2=2)), axis=0), 1e-300))
+    sym = 0.5 * (b + np.transpose(b, (0, 2, 1))) / np.outer(d, d)[None]
+    return float(np.min(np.linalg.eigvalsh(sym)))
+
+
+def model_order(mem: Memory) -> int:
+    """Degree of the fitted model's denominator: two per complex pole pair, one per real pole."""
+    return int(sum(2 if p.imag > 0.0 else 1 for p in mem.poles))
 
 
 def infinite_frequency_estimate(ds: xr.Dataset, order: int) -> np.ndarray:
-    """A(inf) (2, 2) extrapolated from the finite-frequency coefficients alone: B + i w A = K^(i w) +
-    i w A(inf) fitted as one rational function whose numerator has degree order + 1 (its leading
-    coefficient is A(inf)); compared with the BEM's own infinite-frequency solution it tests the
-    coefficients' causality (the Kramers-Kronig relations) and the frequency range."""
+    """A(inf) (2, 2) extrapolated from the finite-frequency coefficients alone: B + i w A fitted as
+    K^(i w) + i w A(inf), K^ a causal rational function of denominator degree ``order`` (the poles of
+    a Sanathanan-Koerner fit, unstable ones reflected, then the residues and A(inf) by least squares
+    with K^(0) = 0). Compared with the BEM's own infinite-frequency solution it tests the
+    coefficients' causality (the Kramers-Kronig relations between A and B) and the frequency range."""
     omega = ds["omega"].values
     A, B = ds["added_mass"].values, ds["damping"].values
     H = (B + 1j * omega[:, None, None] * A).reshape(len(omega), 4).T
     sc = float(omega[-1])
-    _, N = _sk_fit(1j * omega / sc, H, order, order + 1)
-    # N / Q in s / sc: the leading coefficient of the numerator in s is N_{n+1} / sc
-    return (N[:, -1] / sc).reshape(2, 2)
+    q, _ = _sk_fit(1j * omega / sc, H, order, order + 1)
+    _, a_inf = _residues(1j * omega, H, _poles(q, sc), with_slope=True)
+    return a_inf.reshape(2, 2)
 
 
 def memory_parameters(mem: Memory) -> np.ndarray:
@@ -297,63 +343,96 @@ def memory_parameters(mem: Memory) -> np.ndarray:
 
 
 def radiation_checks(ds: xr.Dataset, mem: Memory) -> list:
-    """Validation rows of the memory model against the BEM coefficients ``ds``, for the diagonal
-    entries: the largest error over the BEM's frequencies of the fitted damping and added mass, each
-    relative to the entry's largest |B| / its A(inf) (consistency: the fit), and A(inf) extrapolated
-    from the finite-frequency coefficients (:func:`infinite_frequency_estimate`) against the BEM's
-    infinite-frequency solution (independent: causality of the BEM data and the frequency range)."""
+    """Validation rows of the memory model against the BEM coefficients ``ds`` (matrix form,
+    :func:`bem_radiation` or :func:`bem_from_dataset`): the largest error over the BEM's frequencies
+    of the fitted damping and added mass of heave, pitch and their coupling, each relative to the
+    entry's largest |B| / A(inf) of the diagonal it couples (consistency: the fit); A(inf) of heave
+    and pitch extrapolated from the finite-frequency coefficients (:func:`infinite_frequency_estimate`
+    at the model's order) against the BEM's infinite-frequency solution (independent: causality of
+    the BEM data and the frequency range); passivity of the fitted damping (:func:`passivity`)."""
     from stabflow.validation import Check
+    from stabflow.waves.synthesis import one_blas_thread
 
     omega = ds["omega"].values
     B, A = ds["damping"].values, ds["added_mass"].values
     Bf, Af = mem.damping(omega), mem.added_mass(omega)
     a_inf = ds["added_mass_inf"].values
-    est = infinite_frequency_estimate(ds, len(mem.poles) * 2)
+    with one_blas_thread():
+        est = infinite_frequency_estimate(ds, model_order(mem))
     src = ds.attrs.get("source", "Capytaine")
     band = f"{omega[0]:g}-{omega[-1]:.1f} rad/s"
+    bmax = np.max(np.abs(np.diagonal(B, axis1=1, axis2=2)), axis=0)  # (2,) largest B33, B55
     rows = []
+    for i, j, name in ((0, 0, "heave"), (1, 1, "pitch"), (0, 1, "heave-pitch coupling")):
+        sb = np.sqrt(bmax[i] * bmax[j])
+        sa = np.sqrt(abs(a_inf[i, i] * a_inf[j, j]))
+        eb = float(np.max(np.abs(Bf[:, i, j] - B[:, i, j])) / sb)
+        ea = float(np.max(np.abs(Af[:, i, j] - A[:, i, j])) / sa)
+        scale = "max B" if i == j else "sqrt(max B33 max B55)"
+        rows.append(Check(f"heave-pitch memory model ({len(mem.poles)} poles, order {model_order(mem)}): {name} "
+                          f"damping B(w) of the fit vs the BEM's, largest error / {scale} over {band}",
+                          eb, 0.05, "-", src, kind="consistency"))
+        rows.append(Check(f"heave-pitch memory model: {name} added mass A(w) of the fit vs the BEM's, largest error / "
+                          f"{'A(inf)' if i == j else 'sqrt(A33(inf) A55(inf))'} over {band}", ea, 0.05, "-", src,
+                          kind="consistency"))
     for i, name in enumerate(("heave", "pitch")):
-        eb = float(np.max(np.abs(Bf[:, i, i] - B[:, i, i])) / np.max(np.abs(B[:, i, i])))
-        ea = float(np.max(np.abs(Af[:, i, i] - A[:, i, i])) / abs(a_inf[i, i]))
-        rows.append(Check(f"heave-pitch memory model ({len(mem.poles)} poles): {name} damping B(w) of the fit vs the "
-                          f"BEM's, largest error / max B over {band}", eb, 0.05, "-", src, kind="consistency"))
-        rows.append(Check(f"heave-pitch memory model: {name} added mass A(w) of the fit vs the BEM's, largest error "
-                          f"/ A(inf) over {band}", ea, 0.05, "-", src, kind="consistency"))
-        rows.append(Check(f"heave-pitch radiation: {name} A(inf) extrapolated from A(w), B(w) over {band} (rational "
-                          f"fit, Kramers-Kronig) / the BEM's infinite-frequency solution - 1",
+        rows.append(Check(f"heave-pitch radiation: {name} A(inf) extrapolated from A(w), B(w) over {band} (causal "
+                          f"rational fit of order {model_order(mem)}) / the BEM's infinite-frequency solution - 1",
                           float(est[i, i] / a_inf[i, i] - 1.0), 0.05, "-", f"{src}, omega = inf", kind="independent"))
-    rows.append(Check(f"heave-pitch memory model: passive (smallest eigenvalue of the fitted damping matrix over "
-                      f"0-{4 * omega[-1]:.1f} rad/s / its largest entry)", passivity(mem, float(omega[-1])), np.nan, "-",
-                      "energy dissipation of radiation (B(w) positive semi-definite)", kind="consistency",
+    rows.append(Check(f"heave-pitch memory model: passive (smallest eigenvalue of the fitted damping matrix scaled "
+                      f"by its diagonal, over 0-{4 * omega[-1]:.1f} rad/s)", passivity(mem, float(omega[-1])), np.nan,
+                      "-", "energy dissipation of radiation (B(w) positive semi-definite)", kind="consistency",
                       lower=-PASSIVITY_TOLERANCE))
     return rows
 
 
+def _matrix(ds: xr.Dataset, q: str) -> np.ndarray:
+    """(..., 2, 2) array of quantity ``q`` from its entries on disk."""
+    first = ds[f"radiation_{q}_33"].values
+    out = np.zeros(first.shape + (2, 2), dtype=first.dtype)
+    for e in ENTRIES:
+        out[(...,) + e[1]] = ds[f"radiation_{q}_{e[0]}"].values
+    return out
+
+
 def radiation_dataset(ds: xr.Dataset, mem: Memory) -> xr.Dataset:
-    """The BEM coefficients with the fitted model's A(w), B(w) and K(t) beside them (results file of
-    the ``radiation`` rule)."""
+    """The radiation step's results file: the BEM coefficients ``ds`` (matrix form) with the fitted
+    model's A(w), B(w), K(t), poles and residues beside them, every 2 x 2 quantity entry by entry
+    (module docstring)."""
     omega = ds["omega"].values
     t = np.arange(0.0, KERNEL_T + 0.5 * KERNEL_DT, KERNEL_DT)
-    out = ds.copy()
-    dims = ("omega", "i", "j")
-    out["added_mass_fit"] = (dims, mem.added_mass(omega))
-    out["damping_fit"] = (dims, mem.damping(omega))
-    out = out.assign_coords(time=("time", t), pole=("pole", np.arange(len(mem.poles))))
-    out["kernel"] = (("time", "i", "j"), retardation(omega, ds["damping"].values, t))
-    out["kernel_fit"] = (("time", "i", "j"), mem.kernel(t))
+    values = {"added_mass": ds["added_mass"].values, "damping": ds["damping"].values,
+              "added_mass_inf": ds["added_mass_inf"].values, "added_mass_fit": mem.added_mass(omega),
+              "damping_fit": mem.damping(omega), "kernel": retardation(omega, ds["damping"].values, t),
+              "kernel_fit": mem.kernel(t), "residue_re": np.moveaxis(mem.residues.real, 2, 0),
+              "residue_im": np.moveaxis(mem.residues.imag, 2, 0)}
+    out = xr.Dataset(coords={"radiation_omega": omega, "time": t, "pole": np.arange(len(mem.poles))},
+                     attrs=dict(ds.attrs))
+    for q, dims, _, _ in QUANTITIES:
+        for e in ENTRIES:
+            out[f"radiation_{q}_{e[0]}"] = (dims, values[q][(...,) + e[1]])
     out["pole_re"] = ("pole", mem.poles.real)
     out["pole_im"] = ("pole", mem.poles.imag)
-    out["residue_re"] = (("i", "j", "pole"), mem.residues.real)
-    out["residue_im"] = (("i", "j", "pole"), mem.residues.imag)
     out.attrs["fit"] = ("rational fit of K^(i w) = B + i w (A - A(inf)) with common poles (Sanathanan-Koerner "
                         "iteration; Perez & Fossen 2009), relative degree 1, zero at s = 0")
+    out.attrs["order"] = model_order(mem)
     return annotate(out)
+
+
+def bem_from_dataset(ds: xr.Dataset) -> xr.Dataset:
+    """The BEM coefficients in matrix form (as :func:`bem_radiation` returns them) from the radiation
+    step's file."""
+    return xr.Dataset({"added_mass": (("omega", "i", "j"), _matrix(ds, "added_mass")),
+                       "damping": (("omega", "i", "j"), _matrix(ds, "damping")),
+                       "added_mass_inf": (("i", "j"), _matrix(ds, "added_mass_inf"))},
+                      coords={"omega": ds["radiation_omega"].values}, attrs=dict(ds.attrs))
 
 
 def memory_from_dataset(ds: xr.Dataset) -> Memory:
     """The fitted model stored by :func:`radiation_dataset`."""
-    return Memory(ds["pole_re"].values + 1j * ds["pole_im"].values, ds["residue_re"].values + 1j * ds["residue_im"].values,
-                  ds["added_mass_inf"].values)
+    res = _matrix(ds, "residue_re") + 1j * _matrix(ds, "residue_im")  # (pole, 2, 2)
+    return Memory(ds["pole_re"].values + 1j * ds["pole_im"].values, np.moveaxis(res, 0, 2),
+                  _matrix(ds, "added_mass_inf"))
 
 
 def uses_memory(ship) -> bool:
@@ -364,18 +443,21 @@ def uses_memory(ship) -> bool:
 
 def ship_radiation(ship, progress: bool = False) -> xr.Dataset:
     """The ``radiation`` step: heave-pitch BEM coefficients of the ship's mesh at its config loading
-    (:func:`bem_radiation`), the fitted memory model and its checks
-    (:func:`radiation_dataset`)."""
+    (:func:`bem_radiation`), the fitted memory model (on one BLAS thread, like the BEM: bit-identical
+    files) and the results file (:func:`radiation_dataset`)."""
     from stabflow.dynamics.hydro import bem_mesh
     from stabflow.geometry import Sections, build_hull
     from stabflow.hydrostatics.statics import compute_statics, equilibrium
+    from stabflow.waves.synthesis import one_blas_thread
 
     hull = build_hull(ship)
     st = compute_statics(ship, hull)
     sec = Sections(hull)
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
     ds = bem_radiation(bem_mesh(ship), h0, th0, float(st["lcg"]), float(st["kg"]), ship.rho, progress=progress)
-    return radiation_dataset(ds, fit_memory(ds))
+    ds.attrs.update(ship=ship.name)
+    with one_blas_thread():
+        return radiation_dataset(ds, fit_memory(ds))
 
 
 def ship_memory(ship, lcg: float, radiation: xr.Dataset | None = None, progress: bool = False) -> Memory | None:
@@ -383,16 +465,24 @@ def ship_memory(ship, lcg: float, radiation: xr.Dataset | None = None, progress:
     keeps the constant coefficients): from the ``radiation`` step's dataset, or computed now.
 
     The BEM coefficients are about G of the ship file's loading. Another KG moves the pitch axis
-    vertically, which changes A55 and A35 only through the surge terms (A55 + 2 dz A15 + dz^2 A11),
-    left out (for the trawler's heavy loading, dz = 0.42 m, about 0.4 % of A55); another LCG would
-    change the heave-pitch coupling and is refused."""
+    vertically by dz: heave and the heave-pitch coupling's heave part are unchanged, and the pitch
+    terms change only through the surge terms (A55 - 2 dz A15 + dz^2 A11, likewise B55 and K55; A35
+    - dz A13), which the heave-pitch BEM does not compute and which are left out. Another LCG, ship
+    or water density is refused."""
     if not uses_memory(ship):
         return None
     if radiation is None:
         radiation = ship_radiation(ship, progress=progress)
-    if abs(float(radiation.attrs["xg"]) - lcg) > 1e-3:
-        from stabflow import StabflowError
+    from stabflow import StabflowError
 
-        raise StabflowError(f"{ship.path}: manoeuvring.heave_pitch_radiation: the radiation coefficients are about "
-                            f"x = {float(radiation.attrs['xg']):.3f} m, the loading's G is at {lcg:.3f} m")
+    a = radiation.attrs
+    field = f"{ship.path}: manoeuvring.heave_pitch_radiation"
+    if a.get("ship", ship.name) != ship.name:
+        raise StabflowError(f"{field}: the radiation coefficients are of ship {a['ship']!r}, not {ship.name!r}")
+    if abs(float(a["xg"]) - lcg) > 1e-3:
+        raise StabflowError(f"{field}: the radiation coefficients are about x = {float(a['xg']):.3f} m, the loading's "
+                            f"G is at {lcg:.3f} m")
+    if "rho" in a and abs(float(a["rho"]) - ship.rho) > 1e-6 * ship.rho:
+        raise StabflowError(f"{field}: the radiation coefficients are for water of {float(a['rho']):g} kg/m3, the "
+                            f"ship's is {ship.rho:g} kg/m3")
     return memory_from_dataset(radiation)

@@ -135,33 +135,35 @@ def map_figure(ds: xr.Dataset, path) -> None:
 
 
 def radiation_figure(ds: xr.Dataset, path) -> None:
-    """Heave-pitch radiation of the memory model (the ``radiation`` step): Capytaine's damping and
-    added mass against the fitted state-space model's, and the retardation functions."""
+    """Heave-pitch radiation of the memory model (the ``radiation`` step's file): Capytaine's damping
+    and added mass against the fitted state-space model's, and the retardation functions."""
     fig, ax = plt.subplots(2, 3, figsize=(13, 6.5))
-    w = ds["omega"].values
+    w = ds["radiation_omega"].values
     t = ds["time"].values
-    for col, (i, j, name) in enumerate([(0, 0, "heave-heave"), (1, 1, "pitch-pitch"), (0, 1, "heave-pitch")]):
+    for col, (e, name) in enumerate([("33", "heave-heave"), ("55", "pitch-pitch"), ("35", "heave-pitch")]):
+        v = {q: ds[f"radiation_{q}_{e}"] for q in ("damping", "damping_fit", "added_mass", "added_mass_fit",
+                                                  "added_mass_inf", "kernel", "kernel_fit")}
         a = ax[0, col]
-        a.plot(w, ds["damping"].values[:, i, j], "o", ms=3, label="B(ω) Capytaine")
-        a.plot(w, ds["damping_fit"].values[:, i, j], lw=1.0, label="B(ω) memory model")
+        a.plot(w, v["damping"], "o", ms=3, label="B(ω) Capytaine")
+        a.plot(w, v["damping_fit"], lw=1.0, label="B(ω) memory model")
         b = a.twinx()
-        b.plot(w, ds["added_mass"].values[:, i, j], "s", ms=3, color="C2", label="A(ω) Capytaine")
-        b.plot(w, ds["added_mass_fit"].values[:, i, j], lw=1.0, color="C3", label="A(ω) memory model")
-        b.axhline(float(ds["added_mass_inf"].values[i, j]), color="0.5", lw=0.6, ls=":")
+        b.plot(w, v["added_mass"], "s", ms=3, color="C2", label="A(ω) Capytaine")
+        b.plot(w, v["added_mass_fit"], lw=1.0, color="C3", label="A(ω) memory model")
+        b.axhline(float(v["added_mass_inf"]), color="0.5", lw=0.6, ls=":")
         a.set_title(name)
         a.set_xlabel("ω [rad/s]")
-        a.set_ylabel("damping")
-        b.set_ylabel("added mass")
+        a.set_ylabel(f"B{e} [{v['damping'].attrs.get('units', '')}]")
+        b.set_ylabel(f"A{e} [{v['added_mass'].attrs.get('units', '')}] (dotted: A(∞))")
         if col == 0:
             a.legend(loc="upper right", fontsize=7)
             b.legend(loc="center right", fontsize=7)
         k = ax[1, col]
-        k.plot(t, ds["kernel"].values[:, i, j], lw=1.2, label=f"K(t) from B(ω) ≤ {w[-1]:.1f} rad/s")
-        k.plot(t, ds["kernel_fit"].values[:, i, j], lw=0.8, ls="--", label=f"fitted ({ds.sizes['pole']} poles)")
+        k.plot(t, v["kernel"], lw=1.2, label=f"K(t) from B(ω) ≤ {w[-1]:.1f} rad/s")
+        k.plot(t, v["kernel_fit"], lw=0.8, ls="--", label=f"fitted ({ds.sizes['pole']} poles)")
         k.set_xlabel("t [s]")
-        k.set_ylabel("retardation function")
+        k.set_ylabel(f"K{e} [{v['kernel'].attrs.get('units', '')}]")
         k.legend(fontsize=7)
-    fig.suptitle("Heave-pitch radiation with memory (Cummins): units SI, heave [m], pitch [rad]")
+    fig.suptitle("Heave-pitch radiation with memory (Cummins' equation)")
     fig.tight_layout()
     atomic_savefig(fig, path)
     plt.close(fig)

@@ -493,11 +493,12 @@ def _radiation_summary(results: Path, figdir: Path, ship: str, d: xr.Dataset) ->
     if not f.exists():
         return {"memory": True, "file": None, "figure": fig}
     with xr.open_dataset(f) as r:
-        w = r["omega"].values
+        w = r["radiation_omega"].values
         return {"memory": True, "file": True, "figure": fig, "w0": float(w[0]), "w1": float(w[-1]), "n": len(w),
                 "poles": int(r.sizes["pole"]), "panels": int(r.attrs["panels"]), "lid": int(r.attrs["lid_panels"]),
                 "radius": float(r.attrs["max_panel_radius"]), "source": str(r.attrs["source"]),
-                "a33": float(r["added_mass_inf"].values[0, 0]), "a55": float(r["added_mass_inf"].values[1, 1])}
+                "a33": float(r["radiation_added_mass_inf_33"]), "a55": float(r["radiation_added_mass_inf_55"]),
+                "order": int(r.attrs["order"])}
 
 
 def parametric_roll_page(results: Path, config: dict, figdir: Path) -> str | None:
