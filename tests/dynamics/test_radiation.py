@@ -117,6 +117,19 @@ def trawler_memory():
     return build, mem
 
 
+def _frozen_at(const, mem, we):
+    """The constant model's parameter vector with the heave-pitch added mass and damping of ``mem``
+    at the frequency ``we`` [rad/s]."""
+    p = const.p.copy()
+    A = p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
+    B = p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
+    A[HP] = mem.added_mass([we])[0]
+    B[HP] = mem.damping([we])[0]
+    p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36] = A.ravel()
+    p[K.P_DAMPING:K.P_DAMPING + 36] = B.ravel()
+    return p
+
+
 def test_memory_states_equal_constant_coefficients_at_the_encounter_frequency(trawler_memory):
     """The linear response of the memory model equals that of the constant-coefficient model whose
     heave-pitch added mass and damping are the memory model's A(w_e), B(w_e) (to 1e-6): the kernel's
@@ -133,13 +146,7 @@ def test_memory_states_equal_constant_coefficients_at_the_encounter_frequency(tr
     k = 2 * np.pi / lam
     we = np.sqrt(G * k) - k * m.speed * np.cos(np.radians(45.0))
     const = build()
-    p = const.p.copy()
-    A = p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
-    B = p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
-    A[HP] = mem.added_mass([we])[0]
-    B[HP] = mem.damping([we])[0]
-    p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36] = A.ravel()
-    p[K.P_DAMPING:K.P_DAMPING + 36] = B.ravel()
+    p = _frozen_at(const, mem, we)
     from dataclasses import replace
 
     x_mem = linear_regular_response(m, lam, 1.0)
@@ -181,13 +188,7 @@ def test_mean_wave_force_uses_the_damping_at_the_encounter_frequency(trawler_mem
     k = 2 * np.pi / lam
     we = k * (np.sqrt(G / k) - u)
     const = build(heading=0.0)
-    p = const.p.copy()
-    A = p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
-    B = p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
-    A[HP] = mem.added_mass([we])[0]
-    B[HP] = mem.damping([we])[0]
-    p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36] = A.ravel()
-    p[K.P_DAMPING:K.P_DAMPING + 36] = B.ravel()
+    p = _frozen_at(const, mem, we)
     f_mem = mean_wave_surge_force(m, lam, 1.8, [u])[0]
     f_const = mean_wave_surge_force(replace(const, p=p), lam, 1.8, [u])[0]
     assert f_mem == pytest.approx(f_const, rel=1e-5)
