@@ -212,7 +212,9 @@ class SlurmRuns:
         return run
 
     def _dag(self) -> None:
-        run = self._snakemake("dag", self.dir / "dag" / "results")
+        # a guard against a hung run, not a speed target: the 36 SLURM jobs share the 2 cores with the
+        # unit tests and the local -j2 run (two CI runs on 2026-12-01 were killed at 600 s, 82 % done)
+        run = self._snakemake("dag", self.dir / "dag" / "results", timeout=1000)
         # each job's rule, queue wait and run time, for a failing test's message and for timing
         run.notes["sacct"] = self.cluster.run("sacct", "-X", "-P", "-o", "JobID,Comment%80,State,Submit,Start,End",
                                               check=False).stdout
