@@ -157,8 +157,7 @@ def run_radiation(ship_yaml, out_nc, figure=None, progress: bool = True) -> xr.D
     if not uses_memory(ship):
         raise StabflowError(f"{ship_yaml}: manoeuvring.heave_pitch_radiation: the ship uses the constant coefficients "
                             "(set it to memory for the radiation step)")
-    ds = ship_radiation(ship, progress=progress)
-    ds.attrs.update(ship=ship.name)
+    ds = ship_radiation(ship, progress=progress)  # its attributes name the ship
     if figure:
         radiation_figure(ds, figure)
     write_netcdf(ds, out_nc)
