@@ -92,6 +92,52 @@ def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
     assert np.max(np.abs(wave[:, 1] - slope)) < 2e-3 * np.max(np.abs(slope))
 
 
+def test_line_table_phasor_recurrence_and_moving_points_against_direct_evaluation():
+    """Equally spaced points (the phasor recurrence along the line, 300 points: 9 resets) against each
+    point tabulated alone (cos and sin evaluated there), and a table whose points move at 1.7 m/s
+    against the fixed table at the points' positions of each time, to 1e-12 of the largest value."""
+    rng = np.random.default_rng(6)
+    amp, w, ph = rng.uniform(0.1, 1.0, 15), rng.uniform(0.4, 2.5, 15), rng.uniform(-np.pi, np.pi, 15)
+    xi = -40.0 + 0.3 * np.arange(300)
+    t = 100.0 + np.arange(7) * 0.5
+    line = line_wave_table(amp, w, ph, xi, 30.0, 3.0, t)
+    direct = np.concatenate([line_wave_table(amp, w, ph, xi[j:j + 1], 30.0, 3.0, t) for j in range(len(xi))], axis=1)
+    scale = np.max(np.abs(direct), axis=(0, 1))
+    assert np.max(np.abs(line - direct) / scale) < 1e-12
+    moving = line_wave_table(amp, w, ph, xi[:5], 30.0, 3.0, t, drift=1.7)
+    for i, ti in enumerate(t):
+        fixed = line_wave_table(amp, w, ph, xi[:5] + 1.7 * (ti - t[0]), 30.0, 3.0, t[i:i + 1])
+        assert np.max(np.abs(moving[i] - fixed[0]) / scale) < 1e-12
+
+
+def test_station_wave_on_a_moving_line_table(trawler):
+    """A line table following a drift of -2.5 m/s along xi, covering only the hull and 3 m: the kernel
+    reads it at M_XI0 + M_XI_RATE M_XI_TIME, so stations that drifted with it (3 s later) get eta
+    within 0.2 % of the direct sum; read as a fixed table they would be off the table."""
+    model = six_dof(trawler, heading=30.0)
+    rng = np.random.default_rng(7)
+    amp, w, ph = rng.uniform(0.1, 0.5, 20), np.linspace(0.6, 2.2, 20), rng.uniform(-np.pi, np.pi, 20)
+    xg = float(model.p[K.P_XG])
+    b = np.radians(30.0)
+    reach = float(np.max(np.abs(model.sec.x - xg))) + 3.0
+    c, t1 = -2.5, 3.0
+    ltab, xi0, h, wrap = wave_line(model, (amp, w, ph), 10.0, 6, 0.5, xg * np.cos(b), reach, drift=c)
+    assert wrap == 0
+    m = model.m.copy()
+    m[K6.M_XI0], m[K6.M_DXI], m[K6.M_XI_RATE], m[K6.M_XI_TIME] = xi0, h, c, t1
+    s = model.s0.copy()
+    s[K.S_X] = c * t1 / np.cos(b)  # drifted along x by c t1 in xi
+    wave = np.empty((len(model.sec.x), 2))
+    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[12], wave)  # row 12: t = 10 + 12 x 0.25 s
+    X = s[K.S_X] + model.sec.x
+    k = w**2 / G
+    psi = k * (X * np.cos(b))[:, None] - (w - k * SPEED * np.cos(b)) * (10.0 + t1) + ph
+    eta = (amp * np.cos(psi)).sum(1)
+    assert np.max(np.abs(wave[:, 0] - eta)) < 2e-3 * np.max(np.abs(eta))
+    m[K6.M_XI_RATE] = 0.0
+    assert not K6._station_wave(model.sec.x, model.p, m, s, ltab[12], wave)
+
+
 # ------------------------------------------------------------------------- constrained case
 def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler):
     """Surge, sway and yaw held, no foils, wave nodes at the stations: heave, roll and pitch equal

@@ -54,7 +54,9 @@ M_HELM = 18        # commanded rudder angle of the fixed and zig-zag modes [rad]
 M_ZIGZAG = 19      # heading deviation that reverses the zig-zag helm [rad]
 M_WRAP = 20        # > 0: the line table is periodic with this many intervals (one regular wave)
 M_AB = 21          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
-N_M = M_AB + 9
+M_XI_RATE = 30     # the line table's points move along xi at this rate [m/s] (a table in the frame of the ship's drift)
+M_XI_TIME = 31     # time since the line table's first row [s] (set by the RK4 stage by stage)
+N_M = M_XI_TIME + 1
 # optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
 # :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then
 # the poles (re, im) and the residues (re, im) in (pole, i, j) order; its states follow S_HELM
@@ -106,7 +108,8 @@ def _hermite(y0, d0, y1, d1, t, h):
 @njit(cache=True)
 def _station_wave(xs, p, m, s, line, wave):
     """Fill ``wave`` (nst, 2) with (eta, S) at the stations' instantaneous positions from the line
-    table ``line`` (npoints, 3) at one time. Returns False if a station lies outside the table (its
+    table ``line`` (npoints, 3) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
+    m[M_XI_TIME] + k m[M_DXI] (a table on a grid moving with the ship's drift). Returns False if a station lies outside the table (its
     value is then taken at the nearest end); a periodic table (``M_WRAP`` intervals, one regular
     wave, last point = first) is read modulo its period and never left."""
     xg = p[P_XG]
@@ -118,7 +121,7 @@ def _station_wave(xs, p, m, s, line, wave):
     sy = math.sin(s[S_YAW])
     x0 = s[S_X] + xg
     y0 = s[S_Y]
-    xi0 = m[M_XI0]
+    xi0 = m[M_XI0] + m[M_XI_RATE] * m[M_XI_TIME]
     h = m[M_DXI]
     npt = line.shape[0]
     wrap = m[M_WRAP]
@@ -366,8 +369,9 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints, 3)
     the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle is a state of the
     RK4 with the rate of ``_rudder_rate``; the zig-zag helm switches at the steps. ``out``
-    (nsteps + 1, state size) receives the states. Returns (index of the last step done, status: OK,
-    CAPSIZED (|roll| > phi_cap) or LEFT_TABLE)."""
+    (nsteps + 1, state size) receives the states; ``m[M_XI_TIME]`` is set stage by stage (``m`` is
+    the caller's working copy). Returns (index of the last step done, status: OK, CAPSIZED
+    (|roll| > phi_cap) or LEFT_TABLE)."""
     ns = s0.shape[0]
     s = np.empty(ns)
     k1 = np.empty(ns)
@@ -388,11 +392,13 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
         j = 2 * n
         helm = _helm(m, s[S_YAW], s[S_HELM])
         s[S_HELM] = helm
+        m[M_XI_TIME] = n * dt
         ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, _stop(m, s[S_RUDDER]), k1, f, wave,
                    work, mq, r)
         k1[S_RUDDER] = _rudder_rate(m, s, helm)
         for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k1[q]
+        m[M_XI_TIME] = (n + 0.5) * dt
         ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, _stop(m, tmp[S_RUDDER]), k2,
                     f, wave, work, mq, r)
         k2[S_RUDDER] = _rudder_rate(m, tmp, helm)
@@ -403,6 +409,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
         k3[S_RUDDER] = _rudder_rate(m, tmp, helm)
         for q in range(ns):
             tmp[q] = s[q] + dt * k3[q]
+        m[M_XI_TIME] = (n + 1) * dt
         ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 2], tmp, _stop(m, tmp[S_RUDDER]), k4,
                     f, wave, work, mq, r)
         k4[S_RUDDER] = _rudder_rate(m, tmp, helm)

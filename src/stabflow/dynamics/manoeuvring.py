@@ -393,12 +393,13 @@ def with_hull_derivatives(model: SixDof, der: dict) -> SixDof:
 
 
 def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,
-              points_per_wavelength: float = 8.0, dtype=np.float64):
+              points_per_wavelength: float = 8.0, dtype=np.float64, drift: float = 0.0):
     """Line table (2 nsteps + 1, npoints, 3) of (eta, S, dS/dxi) from time ``t0`` [s] on the
     half-step grid, its first point and spacing (xi0, dxi) [m], and the number of intervals of a
     periodic table (0: not periodic).
 
-    The points cover ``centre`` +- ``reach`` [m] of the propagation coordinate, spaced at the
+    The points cover ``centre`` +- ``reach`` [m] of the propagation coordinate at ``t0`` and move
+    along it at ``drift`` [m/s] (the kernel's ``M_XI_RATE``; not for the periodic tables), spaced at the
     shortest component's wavelength / ``points_per_wavelength`` (cubic Hermite error about
     (k h)^4 / 384, 0.1 % at 8 points). A single regular wave is tabulated over one wavelength at 32
     points and calm water as zeros, both read periodically (any drift)."""
@@ -415,7 +416,7 @@ def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: f
     h = 2 * np.pi / kmax / points_per_wavelength
     n = int(np.ceil(2 * reach / h)) + 1
     xi = centre - reach + h * np.arange(n)
-    tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half, dtype=dtype)
+    tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half, dtype=dtype, drift=drift)
     return np.ascontiguousarray(tab), float(xi[0]), float(h), 0
 
 
@@ -498,20 +499,22 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
     while n0 < nsteps and status == K6.OK:
         n1 = min(nsteps, n0 + per)
         s = out[n0]
-        # the ship's drift along xi in the moving frame: its present rate over the chunk, plus an
-        # allowance of 2 m/s for the change of that rate (a chunk the ship leaves is redone wider)
+        # the line table follows G's drift along xi in the moving frame at its present rate; the
+        # points cover the hull plus an allowance for the change of that rate over the chunk (a
+        # chunk the ship leaves is redone wider)
         span = (n1 - n0) * dt
         rate = s[K.S_RATE + K.S_X] * cb + s[K.S_RATE + K.S_Y] * sb
-        centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb + 0.5 * rate * span
-        reach = hull + (0.5 * abs(rate) + DRIFT_ALLOWANCE) * span
+        centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb
+        reach = hull + DRIFT_ALLOWANCE * span
         while True:
             ltab, xi0, h, wrap = wave_line(model, waves, t0 + n0 * dt, n1 - n0, dt, centre, reach,
-                                           points_per_wavelength, dtype)
+                                           points_per_wavelength, dtype, drift=rate)
             if ramp_s > 0:
                 r = np.clip((t0 + n0 * dt + np.arange(len(ltab)) * 0.5 * dt) / ramp_s, 0.0, 1.0)
                 ltab *= (r * r * (3.0 - 2.0 * r))[:, None, None]
             m = model.m.copy()
             m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = xi0, h, wrap
+            m[K6.M_XI_RATE] = 0.0 if wrap else rate
             done, status = K6._simulate6(*args, model.p, m, model.foils, model.strips, ltab, dt, n1 - n0, s,
                                          np.radians(phi_cap_deg), out[n0:n1 + 1])
             if status != K6.LEFT_TABLE:

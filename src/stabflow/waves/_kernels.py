@@ -33,3 +33,41 @@ def _trig_table(we, t0, dt, out, j0=0):
             nr = cr[n] * rr[n] - ci[n] * ri[n]
             ci[n] = cr[n] * ri[n] + ci[n] * rr[n]
             cr[n] = nr
+
+
+@njit(cache=True, nogil=True)
+def _line_coefficients(amp, k, phase, xi, uniform, out):
+    """Fill ``out`` (2 nc, 3 npoints) with the coefficients of (eta, S, dS/dxi) at the points ``xi``
+    [m] of the cos(we t) rows (first nc) and sin(we t) rows (last nc) of a line wave table: a
+    cos(k xi - we t + phase) = C cos(we t) + D sin(we t) with C = a cos P, D = a sin P,
+    P = k xi + phase; its slope S (C = -a k sin P, D = a k cos P) and dS/dxi (C = -a k^2 cos P,
+    D = -a k^2 sin P). Columns are point-major: 3 j + (0, 1, 2).
+
+    With ``uniform`` (equally spaced points) the phasor exp(i P) is advanced point to point by the
+    constant rotation exp(i k h) and reset to the exact value every 32 points, as ``_trig_table``
+    does in time; otherwise cos and sin are evaluated at every point."""
+    nc = amp.shape[0]
+    npt = xi.shape[0]
+    h = xi[1] - xi[0] if npt > 1 else 0.0
+    for n in range(nc):
+        a = amp[n]
+        ak = a * k[n]
+        ak2 = ak * k[n]
+        rr = np.cos(k[n] * h)
+        ri = np.sin(k[n] * h)
+        c = 1.0
+        s = 0.0
+        for j in range(npt):
+            if not uniform or (j & 31) == 0:
+                P = k[n] * xi[j] + phase[n]
+                c = np.cos(P)
+                s = np.sin(P)
+            out[n, 3 * j] = a * c
+            out[nc + n, 3 * j] = a * s
+            out[n, 3 * j + 1] = -ak * s
+            out[nc + n, 3 * j + 1] = ak * c
+            out[n, 3 * j + 2] = -ak2 * c
+            out[nc + n, 3 * j + 2] = -ak2 * s
+            nr = c * rr - s * ri
+            s = c * ri + s * rr
+            c = nr

@@ -23,7 +23,7 @@ import threading
 
 import numpy as np
 
-from stabflow.waves._kernels import _trig_table
+from stabflow.waves._kernels import _line_coefficients, _trig_table
 
 from stabflow.constants import G
 
@@ -35,18 +35,26 @@ def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     """sum_n [C_pn cos(we_n t) + D_pn sin(we_n t)] for every column p of ``cols`` (a list of (C, D)
     pairs, each (npoints, nc)): one matrix product of the time factors (nt, 2 nc) with the
     coefficients (2 nc, npoints nq) → (nt, npoints, nq) in ``dtype``."""
-    times = np.asarray(times, float)
-    t0 = times[0] if len(times) else 0.0
-    dt = times[1] - times[0] if len(times) > 1 else 0.0
-    if len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
-        raise ValueError("times must be equally spaced")
     nq = len(cols)
     npt, nc = cols[0][0].shape
     coef = np.empty((2 * nc, npt, nq))
     for q, (c, d) in enumerate(cols):
         coef[:nc, :, q] = c.T
         coef[nc:, :, q] = d.T
-    coef = coef.reshape(2 * nc, npt * nq).astype(dtype)
+    return _time_series_product(we, times, coef.reshape(2 * nc, npt * nq).astype(dtype), nq)
+
+
+def _time_series_product(we, times, coef, nq) -> np.ndarray:
+    """The product of :func:`_time_series_table` with the coefficients ``coef`` (2 nc, npoints nq)
+    already assembled (in the table's dtype) → (nt, npoints, nq)."""
+    times = np.asarray(times, float)
+    t0 = times[0] if len(times) else 0.0
+    dt = times[1] - times[0] if len(times) > 1 else 0.0
+    if len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
+        raise ValueError("times must be equally spaced")
+    nc = len(we)
+    npt = coef.shape[1] // nq
+    dtype = coef.dtype
     out = np.empty((len(times), npt * nq), dtype=dtype)
     # in blocks of time rows (multiples of the phasor reset interval, so the values do not depend on
     # the block size): the time factors of thousands of components over a 3-hour record would take
@@ -137,10 +145,14 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
     return _time_series_table(we, times, cols, dtype)
 
 
-def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.float64) -> np.ndarray:
+def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.float64,
+                    drift: float = 0.0) -> np.ndarray:
     """(nt, npoints, 3) table of (eta, S, dS/dxi) at the points ``xi`` [m] of the
     propagation coordinate xi = X cos(beta) + Y sin(beta) of the frame moving with ``speed`` [m/s]
-    along x, at equally spaced ``times``.
+    along x, at equally spaced ``times``; with ``drift`` [m/s] the points move along xi, point j
+    being at xi_j + drift (t - times[0]) at time t (a line that follows the ship's drift along the
+    waves needs only the ship's length: a cos(k xi - we t + phase) is then a cos(k xi_j - (we - k
+    drift) t + phase - k drift times[0])).
 
     Long-crested waves depend on (X, Y) only through xi, so this one line of points serves stations
     anywhere in the horizontal plane (6-DOF: the stations move with surge, sway and yaw); the kernel
@@ -153,12 +165,13 @@ def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.f
     phase = np.asarray(phase, float)
     xi = np.asarray(xi, float)
     k = omega**2 / G
-    we = encounter_frequency(omega, speed, heading_deg)
-    P = k[None, :] * xi[:, None] + phase[None, :]
-    cP, sP = np.cos(P), np.sin(P)
-    ak, ak2 = amp * k, amp * k**2
-    cols = [(amp * cP, amp * sP), (-ak * sP, ak * cP), (-ak2 * cP, -ak2 * sP)]
-    return _time_series_table(we, times, cols, dtype)
+    we = encounter_frequency(omega, speed, heading_deg) - k * drift
+    t_first = float(times[0]) if len(times) else 0.0
+    coef = np.empty((2 * len(amp), 3 * len(xi)), dtype=dtype)
+    # equally spaced points (the 6-DOF tables): phasor recurrence along the line, as in time
+    uniform = len(xi) > 2 and bool(np.allclose(np.diff(xi), xi[1] - xi[0], rtol=1e-12, atol=0.0))
+    _line_coefficients(amp, k, phase - k * drift * t_first, xi, uniform, coef)
+    return _time_series_product(we, times, coef, 3)
 
 
 def regular(height: float, wavelength: float):
