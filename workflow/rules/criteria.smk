@@ -31,6 +31,8 @@ rule validate_criteria:
         nc=f"{RESULTS}/validation/{{ship}}_criteria.nc",
     log:
         f"{RESULTS}/logs/validation/{{ship}}_criteria.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/validate_criteria/{{ship}}.tsv"
     conda:
         "../envs/stabflow.yaml"
     script:
