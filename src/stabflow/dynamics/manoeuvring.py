@@ -437,9 +437,10 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
         The wave grows from zero over this time [s] (smoothstep), so that the ship enters it on the
         motion that continues the calm-water one (0: the full wave from the start).
     chunk_s : float
-        Irregular waves are tabulated in chunks of this length [s] on a line of points around the
-        ship's course over the chunk (its drift rate at the chunk's start, plus 2 m/s either way);
-        a chunk the ship leaves is tabulated again twice as wide.
+        Irregular waves are tabulated in chunks of this length [s] on a line of points that move
+        with G's drift along the waves at its rate at the chunk's start, covering the hull and
+        ``DRIFT_ALLOWANCE`` (2 m/s) of change of that rate either way; a chunk the ship leaves is
+        tabulated again twice as wide.
     dtype : numpy dtype
         Of the irregular-wave table (float32 halves its cost, as the 3-DOF ensembles' tables).
 
