@@ -204,9 +204,10 @@ COMMANDS: dict[str, Command] = {
                                  lambda a: steps.run_validate_dynamics(a.ship, a.hull, a.statics, a.output)),
     "validate-ensemble": Command("seaway, step-size, extremes and split-time checks → NetCDF",
                                  (CONDITION, (("--ensemble",), {"required": True}), (("--extremes",), {}),
-                                  (("--splittime",), {}), HYDRO, RADIATION, CONFIG, OUT),
+                                  (("--splittime",), {}), HYDRO, RADIATION, CONFIG, THREADS, OUT),
                                  _with_condition(lambda a, c, s: steps.run_validate_ensemble(
-                                     s, c, a.ensemble, a.output, a.extremes, a.splittime, a.hydro, a.radiation))),
+                                     s, c, a.ensemble, a.output, a.extremes, a.splittime, a.hydro, a.radiation,
+                                     a.threads))),
     "ensemble-shard": Command("simulate one shard of an irregular-sea ensemble",
                               (CONDITION, (("--shard",), {"type": int, "required": True}), CONFIG, THREADS, HYDRO,
                                RADIATION, OUT),

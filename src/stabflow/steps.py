@@ -356,9 +356,10 @@ def run_validate_dynamics(ship_yaml, hull_nc, statics_nc, out_nc) -> xr.Dataset:
 
 
 def run_validate_ensemble(ship_yaml, cond: dict, ensemble_nc, out_nc, extremes_nc=None, splittime_nc=None,
-                          hydro_nc=None, radiation_nc=None) -> xr.Dataset:
+                          hydro_nc=None, radiation_nc=None, threads: int = 1) -> xr.Dataset:
     """validation of an ensemble condition (seaway, step size) and of its extremes and split-time
-    estimates against the brute force → NetCDF rows (key ``<ship>_<condition>``)."""
+    estimates against the brute force → NetCDF rows (key ``<ship>_<condition>``); ``threads`` for
+    the step-size re-simulation (the files do not depend on it)."""
     from stabflow.statistics.ensemble import build_model
     from stabflow.io import write_netcdf
     from stabflow.validation import checks_dataset
@@ -366,7 +367,7 @@ def run_validate_ensemble(ship_yaml, cond: dict, ensemble_nc, out_nc, extremes_n
 
     model = build_model(load_ship(ship_yaml), cond, _open_optional(hydro_nc), _open_optional(radiation_nc))
     ens = _open_optional(ensemble_nc)
-    rows = ensemble_checks(model, ens, _open_optional(extremes_nc), _open_optional(splittime_nc))
+    rows = ensemble_checks(model, ens, _open_optional(extremes_nc), _open_optional(splittime_nc), threads=threads)
     ds = checks_dataset(model.ship.name, "ensemble", rows)
     ds.attrs["condition"] = cond["name"]
     write_netcdf(ds, out_nc)

@@ -1,5 +1,6 @@
 rule broaching:
     """Paper 004's stern-quartering cases with the 6-DOF model, calm-water manoeuvres, surf-riding thresholds."""
+    priority: 20
     wildcard_constraints:
         ship=broaching_ship(),
     input:
@@ -26,6 +27,8 @@ rule broaching:
 
 rule radiation:
     """Heave-pitch added mass and damping over frequency (Capytaine) and the fitted memory model of the 6-DOF Cummins equation."""
+    # head of the 6-DOF chain (ensemble, split-time, step-size validation)
+    priority: 40
     wildcard_constraints:
         ship="|".join(radiation_ships()) or "none",
     input:

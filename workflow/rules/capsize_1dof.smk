@@ -1,5 +1,7 @@
 rule capsize_1dof:
     """1-DOF box-barge roll: split-time and extremes from independent samples against brute force."""
+    # scheduling (see the Snakefile): no inputs and two threads for ~6 min, so it starts first, on both cores
+    priority: 50
     output:
         nc=f"{RESULTS}/capsize_1dof/box1dof.nc",
         validation=f"{RESULTS}/validation/box1dof_capsize.nc",

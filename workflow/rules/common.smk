@@ -103,6 +103,13 @@ def ensemble_condition(wildcards):
     return dict(ENSEMBLES[wildcards.ens], name=wildcards.ens)
 
 
+def validation_threads(wildcards):
+    """Threads of a validate_ensemble job: 2 for the 6-DOF and derivative conditions, whose step-size
+    re-runs simulate records in parallel; 1 for 3-DOF conditions (their re-runs are serial)."""
+    c = ENSEMBLES[wildcards.ens]
+    return 2 if c.get("dof", 3) == 6 or c.get("model") == "derivative" else 1
+
+
 def ensemble_ship_yaml(wildcards):
     """Ship file of an ensemble condition."""
     return str(Path(SHIPS_DIR) / f"{ENSEMBLES[wildcards.ens]['ship']}.yaml")

@@ -1,5 +1,6 @@
 rule derivative:
     """Derivative model (paper 001) fitted from the volume-based forces; regular-wave map of both models."""
+    priority: 10
     wildcard_constraints:
         ship=derivative_ship(),
     input:

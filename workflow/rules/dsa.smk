@@ -1,5 +1,6 @@
 rule dsa:
     """Direct stability assessment over the IACS Rec. 34 scatter table x headings x speeds (screened, simulated, extrapolated)."""
+    priority: 10
     input:
         ship=ship_yaml,
         criteria=f"{RESULTS}/criteria/{{ship}}.nc",

@@ -1,5 +1,6 @@
 rule ensemble_shard:
     """One shard of an irregular-sea ensemble: records [k * shard_records, ...), statistics only."""
+    priority: 30
     input:
         ship=ensemble_ship_yaml,
         hull=ensemble_hull_source,
@@ -22,6 +23,7 @@ rule ensemble_shard:
 
 rule ensemble_merge:
     """Merge the shards; roll distribution, response spectra and sample time histories."""
+    priority: 30
     input:
         shards=ensemble_shards,
     output:

@@ -1,5 +1,6 @@
 rule extremes:
     """Envelope peaks over threshold, GPD rates from samples, coverage against brute force."""
+    priority: 30
     input:
         ensemble=f"{RESULTS}/ensemble/{{ens}}/ensemble.nc",
     output:

@@ -1,5 +1,6 @@
 rule splittime:
     """Split-time: crossings, motion perturbations in the regenerated seaways, GPD of the metric."""
+    priority: 30
     input:
         ship=ensemble_ship_yaml,
         ensemble=f"{RESULTS}/ensemble/{{ens}}/ensemble.nc",

@@ -58,6 +58,7 @@ rule validate_dynamics:
 
 rule validate_ensemble:
     """Seaway statistics, step-size convergence, extremes coverage and split-time vs brute force."""
+    priority: 30
     input:
         ship=ensemble_ship_yaml,
         ensemble=f"{RESULTS}/ensemble/{{ens}}/ensemble.nc",
@@ -69,6 +70,7 @@ rule validate_ensemble:
         nc=f"{RESULTS}/validation/{{ens}}_ensemble.nc",
     params:
         cond=ensemble_condition,
+    threads: validation_threads
     log:
         f"{RESULTS}/logs/validation/{{ens}}_ensemble.log",
     benchmark:

@@ -9,4 +9,4 @@ def first(files):
 
 
 run_validate_ensemble(i.ship, dict(snakemake.params.cond), i.ensemble, snakemake.output.nc, first(i.extremes),
-                      first(i.splittime), first(i.hydro), first(i.radiation))
+                      first(i.splittime), first(i.hydro), first(i.radiation), threads=snakemake.threads)

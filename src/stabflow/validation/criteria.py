@@ -35,10 +35,12 @@ TOL_WAVE_GM = 1e-6  # m (measured: round-off)
 TOL_GRIM = 0.03
 GRIM_SAMPLES, GRIM_COMPONENTS = 4000, 200
 #: beam seas: roll sigma of the small-wave and the large-roll cases [degree], their tolerances
-#: (relative), records x duration [s] and RK4 step [s] of the time domain
+#: (relative), records x duration [s] and RK4 step [s] of the time domain (0.25 s against 0.1 s,
+#: measured 2026-12-02: barge +0.082 % / +33.396 % against +0.083 % / +33.398 %, Wigley -0.441 % /
+#: -0.260 % against -0.432 % / -0.246 %: the step moves the rows by less than 0.015 % of sigma)
 BEAM_SMALL_DEG, BEAM_LARGE_DEG = 0.5, 5.0
 TOL_BEAM_LINEAR, TOL_BEAM_STOCHASTIC = 0.03, 0.10
-BEAM_RECORDS, BEAM_DURATION, BEAM_DT = 50, 3600.0, 0.1
+BEAM_RECORDS, BEAM_DURATION, BEAM_DT = 50, 3600.0, 0.25
 
 
 def criteria_checks(ship: Ship, crit: xr.Dataset) -> list[Check]:

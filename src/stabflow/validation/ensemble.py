@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import xarray as xr
@@ -57,7 +58,7 @@ from scipy import signal, stats
 
 from stabflow.statistics.ensemble import merge, run_shard
 from stabflow.statistics.signals import quantile_from_histogram
-from stabflow.waves.synthesis import station_wave_table
+from stabflow.waves.synthesis import one_blas_thread, station_wave_table
 from stabflow.validation import Check, run_check
 
 #: seaway: records and hours of elevation at least (tests/waves/test_seaway.py: 40 x 30 min)
@@ -216,13 +217,26 @@ def roll_q999(ens: xr.Dataset) -> float:
     return quantile_from_histogram(h[half:] + h[:half][::-1], c[half:], 0.999)
 
 
-def _rerun(model, dt: float, records) -> xr.Dataset:
-    """Merged ensemble of ``records`` simulated again at step ``dt`` (no time histories kept)."""
+def _rerun(model, dt: float, records, threads: int = 1) -> dict[int, xr.Dataset]:
+    """``records`` simulated again at step ``dt``, one shard dataset per record (no time histories
+    kept), so that any subset merges without simulating it again.
+
+    With ``threads`` > 1 the records of the 6-DOF and derivative models run in a thread pool (their
+    kernels release the GIL); 3-DOF records run one after the other (their batch kernel uses numba's
+    own threads, which must not be entered from several Python threads at once)."""
     m = dataclasses.replace(model, cond=dict(model.cond, dt=dt, samples=0))
-    return merge([run_shard(m, np.asarray(records), progress=False)])
+    recs = [int(r) for r in records]
+
+    def one(r):
+        return run_shard(m, [r], progress=False)
+
+    if threads > 1 and (m.six is not None or m.derivative is not None):
+        with one_blas_thread(), ThreadPoolExecutor(max_workers=threads) as ex:
+            return dict(zip(recs, ex.map(one, recs)))
+    return {r: one(r) for r in recs}
 
 
-def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS) -> list[Check]:
+def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, threads: int = 1) -> list[Check]:
     """Regeneration and step-size convergence rows (consistency).
 
     Parameters
@@ -233,6 +247,8 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS) -> l
         The condition's merged ensemble.
     records : int
         Records to simulate again (the first ones of ``ens``).
+    threads : int
+        Threads for the re-simulation (6-DOF and derivative models; results do not depend on it).
 
     Returns
     -------
@@ -270,8 +286,8 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS) -> l
         n = len(recs)
         if n == 0:
             raise ValueError("the ensemble has no record")
-        a = _rerun(model, dt, recs)
-        b = _rerun(model, fine, recs)
+        pa, pb = _rerun(model, dt, recs, threads), _rerun(model, fine, recs, threads)
+        a, b = merge(list(pa.values())), merge(list(pb.values()))
     except Exception as exc:  # noqa: BLE001 - every row says why it could not run
         why = f"re-simulation failed: {type(exc).__name__}: {exc}"
         return [Check.failed(nm, why, u, ref, "consistency", **band) for nm, u, ref, band in
@@ -294,7 +310,7 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS) -> l
         if len(keep) == 0:
             raise ValueError(f"all {n} records capsized at dt = {dt:g} s or at dt = {fine:g} s")
         if len(keep) < n:
-            a, b = _rerun(model, dt, keep), _rerun(model, fine, keep)
+            a, b = merge([pa[int(r)] for r in keep]), merge([pb[int(r)] for r in keep])
         sa, sb = float(a["roll_std"]), float(b["roll_std"])
         qa, qb = roll_q999(a), roll_q999(b)
     except Exception as exc:  # noqa: BLE001
@@ -460,7 +476,7 @@ def splittime_checks(splittime: xr.Dataset | None) -> list[Check]:
 
 
 def ensemble_checks(model, ens: xr.Dataset, extremes: xr.Dataset | None = None,
-                    splittime: xr.Dataset | None = None) -> list[Check]:
+                    splittime: xr.Dataset | None = None, threads: int = 1) -> list[Check]:
     """All irregular-sea validation rows of one condition.
 
     Parameters
@@ -474,6 +490,8 @@ def ensemble_checks(model, ens: xr.Dataset, extremes: xr.Dataset | None = None,
         not run for the condition (its rows are SKIPPED with that reason).
     splittime : xarray.Dataset, optional
         The split-time step's dataset (``stabflow.statistics.splittime.analyse``); ``None`` likewise.
+    threads : int
+        Threads for the step-size re-simulation (:func:`step_checks`).
 
     Returns
     -------
@@ -483,5 +501,5 @@ def ensemble_checks(model, ens: xr.Dataset, extremes: xr.Dataset | None = None,
         kinds. A row that cannot be computed is a FAIL row with the reason.
     """
     records = int(model.cond.get("validation_records", CONVERGENCE_RECORDS))
-    return (seaway_checks(model) + step_checks(model, ens, records) + extremes_checks(extremes)
+    return (seaway_checks(model) + step_checks(model, ens, records, threads) + extremes_checks(extremes)
             + splittime_checks(splittime))
