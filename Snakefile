@@ -2,8 +2,8 @@
 # The whole pipeline on one screen: config -> hull -> statics -> waves / early-stage metric -> rao -> ensemble -> extremes / splittime (+ the 1-DOF capsize case, the 6-DOF broaching scenario, the derivative model) -> criteria / dsa -> validation -> report.
 # Scheduling on few cores: rules with a `priority:` start first among the jobs that are ready, longest
 # chains first (capsize_1dof 50; the 6-DOF chain's radiation 40; ensembles, extremes, split-time and
-# their validation 30; broaching 20; DSA and derivative model 10; the rest 0), so that the long
-# two-thread jobs do not wait for the end of the run, where they would run alone.
+# their validation 30; broaching 20; DSA and derivative model 10; the rest 0), so that no long job is
+# left to run alone at the end. Every job has one thread by default (`ensemble_threads`).
 
 
 configfile: "config/config.yaml"

@@ -11,6 +11,10 @@
 2. CPU-seconds per simulated hour on one core (numba at one thread), 6-DOF at the converged step and
    at the 3-DOF ensembles' 0.5 s, beside the 3-DOF kernel on the same ship, sea and step
    (target: 6-DOF <= 0.1 CPU-s per simulated hour).
+3. Station-count convergence at the converged step (``--stations``, the ship cut again at each
+   count): the trajectory error over the first ``--horizon`` seconds against the largest count, the
+   whole record's roll sigma, and the CPU-seconds per simulated hour at each count. The converged
+   count is the smallest whose trajectory error is within 1 %.
 """
 
 from __future__ import annotations
@@ -52,6 +56,8 @@ def main(argv=None):
     ap.add_argument("--ship", default="trawler")
     ap.add_argument("--seconds", type=float, default=600.0)
     ap.add_argument("--horizon", type=float, default=30.0)
+    ap.add_argument("--stations", default="11,21,41,81,161",
+                    help="station counts of part 3, comma separated (the largest is the reference)")
     ap.add_argument("--radiation", help="the radiation step's NetCDF of a ship with the heave-pitch memory model "
                                         "(computed first when not given)")
     a = ap.parse_args(argv)
@@ -100,6 +106,31 @@ def main(argv=None):
         c3 = three_dof_cpu(model, waves, dt, a.seconds) / a.seconds * 3600.0
         print(f"  dt {dt:g} s: 6-DOF {c6:.3f} CPU-s per simulated hour, 3-DOF {c3:.3f}; ratio {c6 / c3:.2f} "
               f"(target 6-DOF <= 0.1)")
+    counts = sorted(int(n) for n in a.stations.split(","))
+    print(f"station-count convergence at dt {conv:g} s (reference: {counts[-1]} stations)")
+    runs = {}
+    for n in counts:
+        m = six_dof_model(ship.modified(stations=n), 45.0, 10.0, radiation=rad)
+        simulate_six_dof(m, waves, 5.0, conv)  # numba compiled already; warms the tables
+        t0 = time.process_time()
+        ds = simulate_six_dof(m, waves, a.seconds, conv)
+        runs[n] = (ds, (time.process_time() - t0) / a.seconds * 3600.0)
+    ref_n, _ = runs[counts[-1]]
+    t = ref_n.time.where(ref_n.time <= ap_h, drop=True)
+    scale = {v: float(np.abs(ref_n[v].sel(time=t)).max()) for v in ("roll", "yaw")}
+    good = []
+    for n in counts:
+        ds, cpu = runs[n]
+        e = max(float(np.abs(ds[v].sel(time=t) - ref_n[v].sel(time=t)).max()) / scale[v] for v in ("roll", "yaw"))
+        if e <= 0.01:
+            good.append(n)
+        print(f"  {n:4d} stations: trajectory error over {ap_h:g} s {100 * e:7.3f} %; roll sigma "
+              f"{float(ds['roll'].std()):7.3f} deg, max |roll| {float(np.abs(ds['roll']).max()):7.2f} deg; "
+              f"{cpu:.3f} CPU-s per simulated hour")
+    if len(good) > 1:
+        print(f"  converged station count (trajectory within 1 % of {counts[-1]} stations): {min(good)}")
+    else:
+        print(f"  NOT CONVERGED in stations below {counts[-1]}")
 
 
 if __name__ == "__main__":

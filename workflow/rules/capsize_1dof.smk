@@ -1,6 +1,6 @@
 rule capsize_1dof:
     """1-DOF box-barge roll: split-time and extremes from independent samples against brute force."""
-    # scheduling (see the Snakefile): no inputs and two threads for ~6 min, so it starts first, on both cores
+    # scheduling (see the Snakefile): no inputs and ~9 min on one core: it starts first
     priority: 50
     output:
         nc=f"{RESULTS}/capsize_1dof/box1dof.nc",
@@ -8,7 +8,7 @@ rule capsize_1dof:
         figure=f"{RESULTS}/capsize_1dof/box1dof.png",
     params:
         cfg=config["capsize_1dof"],
-    threads: 2
+    threads: config["ensemble_threads"]
     log:
         f"{RESULTS}/logs/capsize_1dof.log",
     benchmark:

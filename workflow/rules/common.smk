@@ -104,10 +104,11 @@ def ensemble_condition(wildcards):
 
 
 def validation_threads(wildcards):
-    """Threads of a validate_ensemble job: 2 for the 6-DOF and derivative conditions, whose step-size
-    re-runs simulate records in parallel; 1 for 3-DOF conditions (their re-runs are serial)."""
+    """Threads of a validate_ensemble job: ``ensemble_threads`` for the 6-DOF and derivative
+    conditions, whose step-size re-runs simulate records in parallel; 1 for 3-DOF conditions (their
+    re-runs are serial)."""
     c = ENSEMBLES[wildcards.ens]
-    return 2 if c.get("dof", 3) == 6 or c.get("model") == "derivative" else 1
+    return config["ensemble_threads"] if c.get("dof", 3) == 6 or c.get("model") == "derivative" else 1
 
 
 def ensemble_ship_yaml(wildcards):

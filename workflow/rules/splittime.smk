@@ -15,7 +15,7 @@ rule splittime:
     params:
         cond=ensemble_condition,
         cfg=config["splittime"],
-    threads: 2
+    threads: config["ensemble_threads"]
     log:
         f"{RESULTS}/logs/splittime/{{ens}}.log",
     benchmark:
