@@ -58,10 +58,23 @@ def test_cell_grid_probabilities():
 CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan, "lwl": 100.0, "ea_crew_height": 10.0})
 
 
+#: the small assessment's cells as assess_cells returned them (kept by the ``small`` fixture)
+CELLS = {}
+
+
 @pytest.fixture(scope="module")
 def small():
     ship = load_ship(SHIPS / "barge.yaml")
-    return ship, dsa_run.assess_dsa(ship, CRIT, CFG)
+    real = dsa_run.assess_cells
+
+    def keep(*args, **kwargs):
+        CELLS["barge"] = real(*args, **kwargs)
+        return CELLS["barge"]
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(dsa_run, "assess_cells", keep)
+        out = dsa_run.assess_dsa(ship, CRIT, CFG)
+    return ship, out
 
 
 def test_small_assessment(small):
@@ -119,15 +132,18 @@ def test_small_assessment_is_deterministic(small):
                                   again.rate_hi.values[again.method.values != "counted"])
 
 
-def test_row_straddling_the_standard_has_no_verdict(small, tmp_path):
+def test_row_straddling_the_standard_has_no_verdict(small, tmp_path, monkeypatch):
     """An interval that straddles the standard decides nothing: NOT EVALUATED, saying so (the
-    standard overridden to lie inside the barge's interval)."""
+    standard overridden to lie inside the barge's interval). The long-term standard does not enter
+    the cells, so the assessment aggregates the small assessment's own cells again."""
     ship, ds = small
     p = tmp_path / "over.yaml"
     mid = float(np.sqrt(float(ds.rate_lo) * float(ds.rate_hi)))
     p.write_text("criteria_overrides:\n"
                  f"  - {{key: sgisc.direct_stability_assessment.long_term_standard, value: {mid}, source: 'test'}}\n")
+    monkeypatch.setattr(dsa_run, "assess_cells", lambda *a, **k: CELLS["barge"].copy(deep=True))
     again = dsa_run.assess_dsa(ship, CRIT, CFG, std=Standards(p))
+    assert float(again.rate) == float(ds.rate) and float(again.rate_hi) == float(ds.rate_hi)
     assert again.attrs["row_verdict"] == "NOT EVALUATED" and "straddles the standard" in again.attrs["row_reason"]
     assert again.attrs["row_value"] == float(again.rate)
 
