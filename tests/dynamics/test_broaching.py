@@ -63,3 +63,28 @@ def test_probability_map_counts_and_intervals():
         # 0 of 2: the exact upper bound is 1 - 0.025^(1/2)
         zero = k == 0
         np.testing.assert_allclose(ds[f"map_{name}_upper"].values[zero], 1 - 0.025 ** 0.5, rtol=1e-9)
+
+
+def test_manoeuvring_added_mass_does_not_depend_on_blas_threads():
+    """The trawler's Capytaine manoeuvring added mass, solved again at every 6-DOF model build, is
+    the same bit for bit whatever BLAS's thread count: Snakemake gives each job its own
+    (OPENBLAS_NUM_THREADS), and a two-thread split-time job's records had parted from the
+    one-thread ensemble shards' through it (3e-11 relative)."""
+    from threadpoolctl import threadpool_limits
+
+    from stabflow.dynamics.hydro import bem_mesh, manoeuvring_added_mass
+    from stabflow.dynamics.tables import Sections
+    from stabflow.hydrostatics.statics import equilibrium
+
+    ship = load_ship(ROOT / "config" / "ships" / "trawler.yaml").modified(stations=21)
+    hull = build_hull(ship)
+    st = compute_statics(ship, hull)
+    h0, th0, _ = equilibrium(Sections(hull), float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    mesh = bem_mesh(ship)
+    out = []
+    for n in (1, 2, 1):
+        with threadpool_limits(limits=n, user_api="blas"):
+            out.append(manoeuvring_added_mass(mesh, h0, th0, float(st["lcg"]), float(st["kg"]), ship.rho))
+    np.testing.assert_array_equal(out[0], out[1])
+    np.testing.assert_array_equal(out[0], out[2])
+    assert out[0][1, 1] > 0 and out[0][2, 2] > 0

@@ -58,8 +58,11 @@ def radiation(body, omega, rho, solver=None):
     """(A, B): 3x3 added mass and radiation damping for (heave, roll, pitch) at ``omega``."""
     import capytaine as cpt
 
+    from stabflow.waves.synthesis import one_blas_thread
+
     solver = solver or cpt.BEMSolver()
-    res = [solver.solve(cpt.RadiationProblem(body=body, radiating_dof=d, omega=omega, rho=rho, g=G)) for d in DOFS]
+    with one_blas_thread():  # the BEM solve's rounding depends on BLAS's threads: the same in every job
+        res = [solver.solve(cpt.RadiationProblem(body=body, radiating_dof=d, omega=omega, rho=rho, g=G)) for d in DOFS]
     A = np.array([[r.added_mass[d] for r in res] for d in DOFS])
     B = np.array([[r.radiation_damping[d] for r in res] for d in DOFS])
     return A, B
@@ -77,8 +80,14 @@ def manoeuvring_added_mass(mesh, h0, th0, xg, zg, rho) -> np.ndarray:
     dofs = ["Surge", "Sway", "Yaw"]
     body = cpt.FloatingBody(mesh=cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)),
                             dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge))).immersed_part().with_only_dofs(dofs)
+    from stabflow.waves.synthesis import one_blas_thread
+
     solver = cpt.BEMSolver()
-    res = [solver.solve(cpt.RadiationProblem(body=body, radiating_dof=d, omega=0.0, rho=rho, g=G)) for d in dofs]
+    # on one BLAS thread: the solve's rounding depends on BLAS's threads, and every 6-DOF job solves
+    # it again (a two-thread split-time job's trawler records parted from the one-thread shards'
+    # by this, 3e-11 relative in the added mass: found 2026-12-02)
+    with one_blas_thread():
+        res = [solver.solve(cpt.RadiationProblem(body=body, radiating_dof=d, omega=0.0, rho=rho, g=G)) for d in dofs]
     A = np.array([[r.added_mass[d] for r in res] for d in dofs])
     return 0.5 * (A + A.T)
 
