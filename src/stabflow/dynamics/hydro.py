@@ -16,6 +16,7 @@ import xarray as xr
 from stabflow.geometry.frames import earth_vertices
 from stabflow.io import annotate
 from stabflow.constants import G
+from stabflow.waves.synthesis import one_blas_thread
 
 DOFS = ["Heave", "Roll", "Pitch"]
 
@@ -58,8 +59,6 @@ def radiation(body, omega, rho, solver=None):
     """(A, B): 3x3 added mass and radiation damping for (heave, roll, pitch) at ``omega``."""
     import capytaine as cpt
 
-    from stabflow.waves.synthesis import one_blas_thread
-
     solver = solver or cpt.BEMSolver()
     with one_blas_thread():  # the BEM solve's rounding depends on BLAS's threads: the same in every job
         res = [solver.solve(cpt.RadiationProblem(body=body, radiating_dof=d, omega=omega, rho=rho, g=G)) for d in DOFS]
@@ -80,8 +79,6 @@ def manoeuvring_added_mass(mesh, h0, th0, xg, zg, rho) -> np.ndarray:
     dofs = ["Surge", "Sway", "Yaw"]
     body = cpt.FloatingBody(mesh=cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)),
                             dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge))).immersed_part().with_only_dofs(dofs)
-    from stabflow.waves.synthesis import one_blas_thread
-
     solver = cpt.BEMSolver()
     # on one BLAS thread: the solve's rounding depends on BLAS's threads, and every 6-DOF job solves
     # it again (a two-thread split-time job's trawler records parted from the one-thread shards'
