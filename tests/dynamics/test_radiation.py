@@ -2,6 +2,8 @@
 against a known system, the kernel's memory states against the linear frequency-domain solution
 and against constant coefficients at the encounter frequency, and the BEM on a box barge."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -112,19 +114,21 @@ def trawler_memory():
 
     man = Manoeuvring(foils=(Foil(x=-10.4, z=1.45, span=2.9, chord=0.43, rudder=True),),
                       added_mass=np.diag([1.0e4, 1.0e5, 3.0e6]), hull="slender_body")
-    build = lambda memory=None, heading=45.0: build_six_dof(sec, st, co, ship.rho, heading, 10.0 * KNOT, man,
-                                                            tables=tabs, memory=memory)
+
+    def build(memory=None, heading=45.0, forward_speed=False):
+        return build_six_dof(sec, st, co, ship.rho, heading, 10.0 * KNOT,
+                             replace(man, radiation_forward_speed=forward_speed), tables=tabs, memory=memory)
+
     return build, mem
 
 
-def _frozen_at(const, mem, we):
+def _frozen_at(const, mem, we, coefficients=None):
     """The constant model's parameter vector with the heave-pitch added mass and damping of ``mem``
-    at the frequency ``we`` [rad/s]."""
+    at the frequency ``we`` [rad/s] (or the given ``coefficients`` (A, B) (2, 2))."""
     p = const.p.copy()
     A = p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
     B = p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6)
-    A[HP] = mem.added_mass([we])[0]
-    B[HP] = mem.damping([we])[0]
+    A[HP], B[HP] = coefficients if coefficients is not None else (mem.added_mass([we])[0], mem.damping([we])[0])
     p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36] = A.ravel()
     p[K.P_DAMPING:K.P_DAMPING + 36] = B.ravel()
     return p
@@ -147,8 +151,6 @@ def test_memory_states_equal_constant_coefficients_at_the_encounter_frequency(tr
     we = np.sqrt(G * k) - k * m.speed * np.cos(np.radians(45.0))
     const = build()
     p = _frozen_at(const, mem, we)
-    from dataclasses import replace
-
     x_mem = linear_regular_response(m, lam, 1.0)
     x_const = linear_regular_response(replace(const, p=p), lam, 1.0)
     assert np.allclose(x_mem, x_const, rtol=1e-5, atol=1e-7 * np.max(np.abs(x_const)))
@@ -156,13 +158,108 @@ def test_memory_states_equal_constant_coefficients_at_the_encounter_frequency(tr
     assert abs(abs(x_mem[2]) / abs(linear_regular_response(const, lam, 1.0)[2]) - 1.0) > 0.01
 
 
+def _stf(mem, we, U, xt=0.0, at=0.0):
+    """Salvesen, Tuck & Faltinsen's (1970) heave-pitch coefficients at speed U of zero-speed A, B
+    (symmetric), their table of speed corrections with the transom terms of a transom at x_T of
+    added mass a_T (its damping b^A zero)."""
+    A, B = mem.added_mass([we])[0], mem.damping([we])[0]
+    w2 = we * we
+    Au = np.array([[A[0, 0], A[0, 1] - U * B[0, 0] / w2 - U * U * at / w2],
+                   [A[1, 0] + U * B[0, 0] / w2, A[1, 1] + U * U * A[0, 0] / w2 + U * U * xt * at / w2]])
+    Bu = np.array([[B[0, 0] + U * at, B[0, 1] + U * A[0, 0] - U * xt * at],
+                   [B[1, 0] - U * A[0, 0] - U * xt * at, B[1, 1] + U * U * B[0, 0] / w2 + U * xt * xt * at]])
+    return Au, Bu
+
+
+def test_transom_added_mass_of_lewis_sections_in_closed_form():
+    """The transom's heave added mass: a semicircle rho pi R^2 / 2, a flat plate rho pi b^2 / 2,
+    and the trawler's broad shallow transom (6.11 m x 0.63 m, H0 4.8) within 10 % of the plate's."""
+    from stabflow.dynamics.radiation import transom
+    from stabflow.dynamics.roll_damping import lewis_coefficients
+
+    def sp(b, t, sigma):
+        a1, a3 = lewis_coefficients(b / (2 * t), sigma)
+        return xr.Dataset({"x": ("s", [-5.0, 0.0]), "dx": ("s", [1.0, 1.0]), "breadth": ("s", [b, b]),
+                           "draft": ("s", [t, t]), "valid": ("s", [True, True]),
+                           "lewis_a1": ("s", [float(a1), float(a1)]), "lewis_a3": ("s", [float(a3), float(a3)])})
+
+    xt, a = transom(sp(4.0, 2.0, np.pi / 4), 1.0, 1025.0)
+    assert xt == pytest.approx(-6.5)
+    assert a == pytest.approx(1025.0 * np.pi * 4.0 / 2, rel=1e-9)
+    _, a = transom(sp(4.0, 1e-6, 1.0), 0.0, 1025.0)  # wide and flat: the plate
+    assert a == pytest.approx(1025.0 * np.pi * 4.0 / 2, rel=1e-4)
+    ship, sec, st, co = ship_model("trawler")
+    from stabflow.dynamics.roll_damping import section_parameters
+
+    xt, a = transom(section_parameters(sec, st), float(st["lcg"]), ship.rho)
+    assert xt < -0.4 * 25.0
+    assert a == pytest.approx(1025.0 * np.pi * (6.11 / 2) ** 2 / 2, rel=0.1)  # H0 4.8: near the plate
+
+
+@pytest.mark.parametrize("lam", [21.3, 42.7])
+def test_forward_speed_terms_are_strip_theory_at_the_encounter_frequency(trawler_memory, lam):
+    """With the forward-speed terms, the memory model's linear response in a quartering wave equals
+    that of the constant model given strip theory's A(U), B(U) at the encounter frequency (1e-5);
+    the kernel's time-domain form (relative vertical velocity, -u d/dx of the momentum) is the
+    frequency-domain table. Symmetric zero-speed coefficients, as potential flow has them."""
+    build, mem = trawler_memory
+    res = mem.residues.copy()
+    res[1, 0] = res[0, 1] = 0.5 * (res[0, 1] + res[1, 0])
+    ai = 0.5 * (mem.added_mass_inf + mem.added_mass_inf.T)
+    mem = Memory(mem.poles, res, ai)
+    m = build(mem, forward_speed=True)
+    k = 2 * np.pi / lam
+    we = np.sqrt(G * k) - k * m.speed * np.cos(np.radians(45.0))
+    const = build()
+    from stabflow.dynamics.surf_riding import memory_forward_speed
+
+    xt, at = memory_forward_speed(m)
+    assert at > 0.0  # the trawler's transom
+    p = _frozen_at(const, mem, we, _stf(mem, we, m.speed, xt, at))
+    x_fwd = linear_regular_response(m, lam, 1.0)
+    x_const = linear_regular_response(replace(const, p=p), lam, 1.0)
+    assert np.allclose(x_fwd, x_const, rtol=1e-5, atol=1e-7 * np.max(np.abs(x_const)))
+    # the speed terms matter: the zero-speed memory gives another pitch
+    x_zero = linear_regular_response(build(mem), lam, 1.0)
+    assert abs(x_fwd[4] - x_zero[4]) > 0.01 * abs(x_zero[4])
+
+
+def test_forward_speed_coefficients_follow_the_kernel_with_asymmetric_fits(trawler_memory):
+    """forward_speed_coefficients (the F0 and report's A(U), B(U)) equal the kernel's linear
+    response for a fit whose coupling is not symmetric (1e-5), and strip theory's table when it is."""
+    from stabflow.dynamics.radiation import forward_speed_coefficients
+
+    build, mem = trawler_memory
+    res = mem.residues.copy()
+    res[0, 1] *= 1.3
+    res[1, 0] *= 0.7
+    ai = mem.added_mass_inf.copy()
+    ai[0, 1] *= 1.2
+    mem = Memory(mem.poles, res, ai)
+    m = build(mem, forward_speed=True)
+    lam = 30.0
+    k = 2 * np.pi / lam
+    we = np.sqrt(G * k) - k * m.speed * np.cos(np.radians(45.0))
+    const = build()
+    from stabflow.dynamics.surf_riding import memory_forward_speed
+
+    tr = memory_forward_speed(m)
+    Au, Bu = (x[0] for x in forward_speed_coefficients(mem, [we], m.speed, tr))
+    x_fwd = linear_regular_response(m, lam, 1.0)
+    x_const = linear_regular_response(replace(const, p=_frozen_at(const, mem, we, (Au, Bu))), lam, 1.0)
+    assert np.allclose(x_fwd, x_const, rtol=1e-5, atol=1e-7 * np.max(np.abs(x_const)))
+    sym = Memory(mem.poles, 0.5 * (res + res.transpose(1, 0, 2)), 0.5 * (ai + ai.T))
+    for got, want in zip((x[0] for x in forward_speed_coefficients(sym, [we], m.speed, tr)), _stf(sym, we, m.speed, *tr)):
+        assert np.allclose(got, want, rtol=1e-12, atol=1e-9 * np.max(np.abs(want)))
+
+
 def test_memory_time_domain_against_the_linear_solution(trawler_memory):
     """Small stern-quartering waves (H/lambda 1/2000), autopilot on: the 6-DOF record with the memory
-    states has the first harmonics of its linear frequency-domain solution within 0.5 %."""
+    states and their forward-speed terms has the first harmonics of its linear frequency-domain solution within 0.5 %."""
     from stabflow.dynamics.manoeuvring import first_harmonic
 
     build, mem = trawler_memory
-    m = build(mem)
+    m = build(mem, forward_speed=True)
     lam = 21.7
     a = lam / 4000
     k = 2 * np.pi / lam
@@ -192,6 +289,18 @@ def test_mean_wave_force_uses_the_damping_at_the_encounter_frequency(trawler_mem
     f_mem = mean_wave_surge_force(m, lam, 1.8, [u])[0]
     f_const = mean_wave_surge_force(replace(const, p=p), lam, 1.8, [u])[0]
     assert f_mem == pytest.approx(f_const, rel=1e-5)
+    # with the forward-speed terms: the constant model given their A(U), B(U) at w_e (the power of
+    # the asymmetric added mass included), and the speed terms change F0
+    from stabflow.dynamics.radiation import forward_speed_coefficients
+
+    m_fwd = build(mem, heading=0.0, forward_speed=True)
+    from stabflow.dynamics.surf_riding import memory_forward_speed
+
+    tr = memory_forward_speed(m_fwd)
+    p_fwd = _frozen_at(const, mem, we, tuple(x[0] for x in forward_speed_coefficients(mem, [we], u, tr)))
+    f_fwd = mean_wave_surge_force(m_fwd, lam, 1.8, [u])[0]
+    assert f_fwd == pytest.approx(mean_wave_surge_force(replace(const, p=p_fwd), lam, 1.8, [u])[0], rel=1e-5)
+    assert abs(f_fwd / f_mem - 1.0) > 0.01
 
 
 def test_box_barge_bem_and_fit():

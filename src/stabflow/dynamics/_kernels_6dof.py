@@ -27,7 +27,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stabflow.dynamics._kernels import (N_STATE, P_COS_BETA, P_G, P_RHO, P_SIN_BETA, P_XG, P_ZG, S_PITCH,
+from stabflow.dynamics._kernels import (N_STATE, P_ADDED_MASS, P_COS_BETA, P_G, P_RHO, P_SIN_BETA, P_XG, P_ZG, S_PITCH,
                                         S_RATE, S_ROLL, S_X, S_Y, S_YAW, S_Z, _fkhs, _generalized_system,
                                         _origin_height, _solve_free, _update_amplitude)
 
@@ -59,7 +59,9 @@ M_XI_TIME = 31     # time since the line table's first row [s] (set by the RK4 s
 N_M = M_XI_TIME + 1
 # optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
 # :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then
-# the poles (re, im) and the residues (re, im) in (pole, i, j) order; its states follow S_HELM
+# the poles (re, im) and the residues (re, im) in (pole, i, j) order, then the forward-speed flag
+# (1: strip theory's speed terms, ``_memory``), the calm-water trim theta_0 [rad], the transom's
+# position x_T from G [m] and its sectional heave added mass a_T [kg/m]; its states follow S_HELM
 M_MEMORY = N_M
 
 # foil rows: position from G (x forward, z up) [m], area S C [m^2], lift slope [1/rad], stall and
@@ -270,18 +272,38 @@ def _horizontal_added_mass(m, s, mq, r):
 
 
 @njit(cache=True, inline="always")
-def _memory(m, s, r, ds):
+def _memory(p, m, s, r, ds, u):
     """Heave-pitch radiation memory (Cummins' convolution as states, :mod:`stabflow.dynamics.radiation`):
     subtracts mu_i = sum_jp Re(c_ijp w_jp) from the generalized forces ``r`` of heave and pitch and
-    writes the states' rates w_jp' = l_p w_jp + q'_j into ``ds``. Nothing without the tail of ``m``."""
+    writes the states' rates w_jp' = l_p w_jp + v_j into ``ds``. Nothing without the tail of ``m``.
+
+    Forward speed (the flag after the residues; ``u`` the surge velocity [m/s]): the time-domain
+    form of strip theory (Salvesen, Tuck & Faltinsen 1970, without transom terms). A section at x
+    moves through the water with the relative vertical velocity w = z' - x theta' + u (theta -
+    theta_0) (the fluid slice sees d/dt - u d/dx), and its force is -(d/dt - u d/dx) of its
+    momentum, a(inf) w plus the memory's. So the heave input is v_z = z' + u (theta - theta_0), the
+    heave force gains -u A33(inf) theta' and the pitch moment (the u d/dx part integrated by parts)
+    u [A33(inf) v_z + mu~_3], mu~_3 = sum_jp Re(c_3jp w_jp / l_p) the heave row's memory of the
+    displacement (its transfer K^(iw) / (iw), finite since K^(0) = 0). The flow leaves a transom
+    stern at x_T with its momentum a_T w_T (the boundary term of the u d/dx part, w_T the transom's
+    relative velocity; a_T its section's added mass at infinite frequency): heave -u a_T w_T, pitch
+    u x_T a_T w_T. For harmonic motions this is STF's table with the transom's a^A (its b^A left
+    out): A35 - U B33 / w^2 - U^2 a_T / w^2, B35 + U A33 - U x_T a_T, A53 + U B33 / w^2,
+    B53 - U A33 - U x_T a_T, A55 + U^2 (A33 + x_T a_T) / w^2, B55 + U^2 B33 / w^2 + U x_T^2 a_T,
+    B33 + U a_T (:func:`stabflow.dynamics.radiation.forward_speed_coefficients`)."""
     if m.shape[0] <= M_MEMORY:
         return
     n = int(m[M_MEMORY])
     b = M_MEMORY + 1
     c0 = b + 2 * n
+    e = c0 + 8 * n
+    fwd = m.shape[0] > e and m[e] != 0.0
+    vz = s[S_RATE + S_Z]
+    if fwd:
+        vz += u * (s[S_PITCH] - m[e + 1])
+    tilde = 0.0
     for j in range(2):
-        qj = S_Z if j == 0 else S_PITCH
-        v = s[S_RATE + qj]
+        v = vz if j == 0 else s[S_RATE + S_PITCH]
         for q in range(n):
             lr = m[b + 2 * q]
             li = m[b + 2 * q + 1]
@@ -293,6 +315,19 @@ def _memory(m, s, r, ds):
             for i in range(2):
                 o = c0 + 2 * (4 * q + 2 * i + j)
                 r[S_Z if i == 0 else S_PITCH] -= m[o] * wr - m[o + 1] * wi
+            if fwd:
+                # Re(c w / l) of the heave row, c / l = c conj(l) / |l|^2
+                o = c0 + 2 * (4 * q + j)
+                cr = m[o]
+                ci = m[o + 1]
+                l2 = lr * lr + li * li
+                tilde += ((cr * lr + ci * li) * wr - (ci * lr - cr * li) * wi) / l2
+    if fwd:
+        a33 = p[P_ADDED_MASS + 6 * S_Z + S_Z]
+        xt = m[e + 2]
+        mt = m[e + 3] * (vz - xt * s[S_RATE + S_PITCH])  # the transom's momentum a_T w_T
+        r[S_Z] -= u * (a33 * s[S_RATE + S_PITCH] + mt)
+        r[S_PITCH] += u * (a33 * vz + tilde + xt * mt)
 
 
 @njit(cache=True)
@@ -312,7 +347,7 @@ def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, d
         ds[j] = s[S_RATE + j]
     _generalized_system(p, s, f, mq, r)
     _horizontal_added_mass(m, s, mq, r)
-    _memory(m, s, r, ds)
+    _memory(p, m, s, r, ds, _heading_velocities(m, s)[2])
     _solve_free(p, mq, r, ds[S_RATE:S_RATE + 6])
     for j in range(S_RATE + 6, N_STATE6):
         ds[j] = 0.0

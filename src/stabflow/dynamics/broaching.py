@@ -56,7 +56,8 @@ def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg
     der = {k: v for k, v in cfg.get("derivatives", {}).items() if k != "source"}
     return Manoeuvring(foils=foils, autopilot=autopilot, derivatives=der, hull=cfg.get("hull_derivatives", "clarke"),
                        form_factor=cfg.get("form_factor", 0.0),
-                       side_force_height=cfg.get("side_force_height"), added_mass=added)
+                       side_force_height=cfg.get("side_force_height"), added_mass=added,
+                       radiation_forward_speed=cfg.get("radiation_forward_speed", False))
 
 
 def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | None = None,

@@ -239,6 +239,10 @@ class Manoeuvring:
     form_factor: float = 0.0
     side_force_height: float | None = None
     added_mass: np.ndarray | None = None
+    #: with a radiation memory: strip theory's forward-speed terms of the heave-pitch radiation
+    #: (``_kernels_6dof._memory``; False, the default: the zero-speed coefficients alone, consistent
+    #: with an excitation of Froude-Krylov forces without diffraction; see :mod:`.radiation`)
+    radiation_forward_speed: bool = False
 
 
 @dataclass(frozen=True)
@@ -291,14 +295,15 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
     m = np.zeros(K6.N_M)
     if memory is not None:
-        from stabflow.dynamics.radiation import memory_parameters
+        from stabflow.dynamics.radiation import memory_parameters, transom
 
         hp_ = (K.S_Z, K.S_PITCH)
         for a, i in enumerate(hp_):
             for b, j in enumerate(hp_):
                 p[K.P_ADDED_MASS + 6 * i + j] = memory.added_mass_inf[a, b]
                 p[K.P_DAMPING + 6 * i + j] = 0.0
-        m = np.concatenate([m, memory_parameters(memory)])
+        trim = float(initial_state(sec, st)[K.S_PITCH])
+        m = np.concatenate([m, memory_parameters(memory, man.radiation_forward_speed, trim, transom(sp, lcg, rho))])
     m[K6.M_SPEED] = speed
     _set_hull_derivatives(m, der, rho, L)
     zh = 0.5 * T if man.side_force_height is None else float(man.side_force_height)

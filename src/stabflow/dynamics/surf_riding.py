@@ -31,9 +31,11 @@ is paid for by a mean surge force F0 with F0 (c - u) = D, D the mean dissipated 
 momentum of the wave energy the ship absorbs, the radiated-energy argument of Gerritsma &
 Beukelman (1972) for added resistance (a resistance in head seas, a thrust in following seas below
 the celerity). From the linear frequency-domain response X at the encounter frequency
-w_e = k (c - u): D = w_e^2 Re(X^H B X) / 2 with B the linear damping, so
+w_e = k (c - u): D = w_e^2 Re(X^H B X) / 2 - w_e^3 Im(X^H A X) / 2 with B the linear damping and A
+the added mass (the second term vanishes for a symmetric A; the BEM's A35 and A53 differ by about
+1 %, and strip theory's forward-speed terms are not symmetric), so
 
-    F0(u) = k w_e Re(X^H B X) / 2,
+    F0(u) = k D / w_e = k w_e Re(X^H B X) / 2 - k w_e^2 Im(X^H A X) / 2,
 
 which vanishes at u = c (quasi-static motions). ``melnikov_threshold(..., wave_force=True)`` uses
 R(u) - F0(u) as the resistance along the orbit, F0 taken at the instantaneous speed (slowly varying
@@ -89,26 +91,51 @@ def surge_force(model: SixDof, wavelength: float, height: float, n: int = 72) ->
 
 def mean_wave_surge_force(model: SixDof, wavelength: float, height: float, speeds) -> np.ndarray:
     """Mean wave-induced surge force F0 [N] (positive forward) in a regular following wave at each
-    ship speed in ``speeds`` [m/s] (module docstring): F0 = k w_e Re(X^H B X) / 2 from the linear
-    6-DOF response X (:func:`.manoeuvring.linear_regular_response`) and the linear damping B of the
-    model (with a radiation memory, its heave-pitch damping at the encounter frequency); 0 at the
-    celerity."""
+    ship speed in ``speeds`` [m/s] (module docstring): F0 = k D / w_e from the linear
+    6-DOF response X (:func:`.manoeuvring.linear_regular_response`) and the model's linear damping
+    and added mass (with a radiation memory, its heave-pitch coefficients at the encounter
+    frequency, with the forward-speed terms if the model has them); 0 at the celerity."""
     from stabflow.dynamics.broaching import with_condition
     from stabflow.dynamics.manoeuvring import linear_regular_response
 
     k = 2 * np.pi / wavelength
     c = np.sqrt(G / k)
     out = np.zeros(len(np.atleast_1d(speeds)))
-    hp = np.ix_([K.S_Z, K.S_PITCH], [K.S_Z, K.S_PITCH])
     for i, u in enumerate(np.atleast_1d(np.asarray(speeds, float))):
         if abs(c - u) < 1e-6 * c:
             continue  # w_e = 0: the motions are quasi-static, nothing is dissipated
+        we = k * (c - u)
         B = model.p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6).copy()
-        if model.memory is not None:  # the memory model's heave-pitch damping at the encounter frequency
-            B[hp] += model.memory.damping([k * (c - u)])[0]
         X = linear_regular_response(with_condition(model, 0.0, float(u)), wavelength, 0.5 * height)
-        out[i] = 0.5 * k * k * (c - u) * float(np.real(np.conj(X) @ B @ X))
+        # mean power dissipated, w_e^2 Re(X^H B X) / 2 - w_e^3 Im(X^H A X) / 2 (the second from an
+        # added mass that is not symmetric, as the forward-speed terms make it), with the memory's
+        # heave-pitch radiation at the encounter frequency (at speed u with its forward-speed terms)
+        A = model.p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
+        power = 0.5 * we * we * float(np.real(np.conj(X) @ B @ X)) - 0.5 * we**3 * float(np.imag(np.conj(X) @ A @ X))
+        if model.memory is not None:
+            from stabflow.dynamics.radiation import forward_speed_coefficients
+
+            fwd = memory_forward_speed(model)
+            if fwd is not None:
+                Ah, Bh = (x[0] for x in forward_speed_coefficients(model.memory, [we], float(u), fwd))
+            else:
+                Ah, Bh = model.memory.added_mass([we])[0], model.memory.damping([we])[0]
+            xh = X[[K.S_Z, K.S_PITCH]]
+            power += 0.5 * we * we * float(np.real(np.conj(xh) @ Bh @ xh)) \
+                - 0.5 * we**3 * float(np.imag(np.conj(xh) @ Ah @ xh))
+        out[i] = k * power / we
     return out
+
+
+def memory_forward_speed(model: SixDof) -> tuple[float, float] | None:
+    """The transom (x_T [m], a_T [kg/m]) if the 6-DOF model's radiation memory carries strip
+    theory's forward-speed terms (the flag after the residues in ``model.m``), else None."""
+    if model.m.size <= K6.M_MEMORY:
+        return None
+    e = K6.M_MEMORY + 1 + 10 * int(model.m[K6.M_MEMORY])
+    if model.m.size <= e or model.m[e] == 0.0:
+        return None
+    return float(model.m[e + 2]), float(model.m[e + 3])
 
 
 def melnikov_threshold(model: SixDof, wavelength: float, height: float, wave_force: bool = False) -> float:
