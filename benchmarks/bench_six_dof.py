@@ -1,6 +1,7 @@
 """6-DOF speed and step-size convergence (issue 17). Run: python benchmarks/bench_six_dof.py [--ship trawler]
 
-1. Step-size convergence: one record (Pierson-Moskowitz Hs 3.1 m, paper 004 IR-1 with the trawler;
+1. Step-size convergence: one record (Pierson-Moskowitz Hs 3.1 m, paper 004 IR-1 with the trawler,
+   or ``--hs``, seed ``--seed``;
    the ensemble sea with DTMB 5415), 10 kn, waves 45 degree off the stern, autopilot on, at
    dt = 0.0125 ... 0.2 s against dt = 0.00625 s: the largest roll and yaw differences over the
    first ``--horizon`` seconds relative to their largest values (the trajectory; a stern-quartering
@@ -58,6 +59,8 @@ def main(argv=None):
     ap.add_argument("--horizon", type=float, default=30.0)
     ap.add_argument("--stations", default="11,21,41,81,161",
                     help="station counts of part 3, comma separated (the largest is the reference)")
+    ap.add_argument("--hs", type=float, default=3.1, help="significant wave height of the trawler's sea [m]")
+    ap.add_argument("--seed", type=int, default=17, help="seed of the record's wave components")
     ap.add_argument("--radiation", help="the radiation step's NetCDF of a ship with the heave-pitch memory model "
                                         "(computed first when not given)")
     a = ap.parse_args(argv)
@@ -71,9 +74,9 @@ def main(argv=None):
     model = six_dof_model(ship, 45.0, 10.0, radiation=rad)
     if model.memory is not None:
         print(f"heave-pitch radiation memory: {len(model.memory.poles)} poles, {model.memory.n_states} states")
-    sea = Seaway(kind="pierson_moskowitz", hs=3.1) if a.ship == "trawler" else \
+    sea = Seaway(kind="pierson_moskowitz", hs=a.hs) if a.ship == "trawler" else \
         Seaway(kind="bretschneider", hs=8.5, tp=15.0)
-    waves = sea.components(17, 0)
+    waves = sea.components(a.seed, 0)
     print(f"{a.ship}: {len(model.sec.x)} stations, {len(waves[0])} wave components, {a.seconds:g} s records, one core")
     simulate_six_dof(model, waves, 5.0, 0.1)  # compile both kernels before timing
     three_dof_cpu(model, waves, 0.1, 5.0)
