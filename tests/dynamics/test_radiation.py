@@ -371,3 +371,61 @@ def test_radiation_command_refuses_a_ship_without_the_memory_model(tmp_path):
     r = subprocess.run([sys.executable, "-m", "stabflow.cli", "radiation", str(SHIPS / "barge.yaml"), "-o", str(out)],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "manoeuvring.heave_pitch_radiation" in r.stderr and not out.exists()
+
+
+def test_forward_speed_terms_vanish_in_calm_water_and_the_tail_holds_trim_and_transom(trawler_memory):
+    """At the calm-water rest state (trimmed by theta_0, at speed) the forward-speed terms add
+    nothing: the right-hand side equals the zero-speed model's (the trim's sign and slot); the
+    tail carries the calm-water trim and the hull's transom."""
+    from stabflow.dynamics import _kernels_6dof as K6
+    from stabflow.dynamics.manoeuvring import _linear_system
+    from stabflow.dynamics.radiation import transom
+    from stabflow.dynamics.roll_damping import section_parameters
+
+    build, mem = trawler_memory
+    m_fwd, m_off = build(mem, forward_speed=True), build(mem)
+    ds_fwd = _linear_system(m_fwd)[2](m_fwd.s0, 0.0)
+    ds_off = _linear_system(m_off)[2](m_off.s0, 0.0)
+    assert abs(m_fwd.s0[K.S_PITCH]) > 1e-4  # the trawler trims: a wrong theta_0 would show
+    assert np.allclose(ds_fwd, ds_off, rtol=0.0, atol=1e-9 * np.max(np.abs(ds_off)))
+    ship, sec, st, co = ship_model("trawler")
+    e = K6.M_MEMORY + 1 + 10 * len(mem.poles)
+    assert m_fwd.m.size == e + 4 and m_fwd.m[e] == 1.0 and m_off.m[e] == 0.0
+    assert m_fwd.m[e + 1] == m_fwd.s0[K.S_PITCH]
+    assert tuple(m_fwd.m[e + 2:e + 4]) == transom(section_parameters(sec, st), float(st["lcg"]), ship.rho)
+
+
+def test_mean_wave_force_is_the_mean_power_of_the_radiation_forces(trawler_memory):
+    """F0 = k P / w_e with P the time average of x' . (A x'' + B x') over an encounter period of the
+    linear response, A and B the model's (the memory's heave-pitch A(w_e), B(w_e), or A(U), B(U)
+    with the speed terms, in place of the parameter vector's A(inf)): a fit whose coupling and
+    A(inf) are not symmetric, so that the power of the added mass's antisymmetric part counts."""
+    from stabflow.dynamics.broaching import with_condition
+    from stabflow.dynamics.radiation import forward_speed_coefficients
+    from stabflow.dynamics.surf_riding import mean_wave_surge_force, memory_forward_speed
+
+    build, mem = trawler_memory
+    res = mem.residues.copy()
+    res[0, 1] *= 1.3
+    res[1, 0] *= 0.7
+    ai = mem.added_mass_inf.copy()
+    ai[0, 1] *= 1.2
+    mem = Memory(mem.poles, res, ai)
+    lam, u = 42.7, 3.0
+    k = 2 * np.pi / lam
+    we = k * (np.sqrt(G / k) - u)
+    t = np.linspace(0.0, 2 * np.pi / we, 4001)[:-1]
+    ph = np.exp(1j * we * t)
+    for fwd in (False, True):
+        m = build(mem, heading=0.0, forward_speed=fwd)
+        X = linear_regular_response(with_condition(m, 0.0, u), lam, 0.9)
+        A = m.p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6).copy()
+        B = m.p[K.P_DAMPING:K.P_DAMPING + 36].reshape(6, 6).copy()
+        if fwd:
+            A[HP], B[HP] = (x[0] for x in forward_speed_coefficients(mem, [we], u, memory_forward_speed(m)))
+        else:
+            A[HP], B[HP] = mem.added_mass([we])[0], mem.damping([we])[0]
+        xd = np.real(1j * we * X[:, None] * ph)
+        xdd = np.real(-we * we * X[:, None] * ph)
+        power = float(np.mean(np.sum(xd * (A @ xdd + B @ xd), axis=0)))
+        assert mean_wave_surge_force(m, lam, 1.8, [u])[0] == pytest.approx(k * power / we, rel=1e-6), fwd

@@ -278,7 +278,8 @@ def _memory(p, m, s, r, ds, u):
     writes the states' rates w_jp' = l_p w_jp + v_j into ``ds``. Nothing without the tail of ``m``.
 
     Forward speed (the flag after the residues; ``u`` the surge velocity [m/s]): the time-domain
-    form of strip theory (Salvesen, Tuck & Faltinsen 1970, without transom terms). A section at x
+    form of strip theory (Salvesen, Tuck & Faltinsen 1970, with the transom's added-mass terms, its
+    damping b^A left out; the A(inf) terms assume A35(inf) = A53(inf), as strip theory has). A section at x
     moves through the water with the relative vertical velocity w = z' - x theta' + u (theta -
     theta_0) (the fluid slice sees d/dt - u d/dx), and its force is -(d/dt - u d/dx) of its
     momentum, a(inf) w plus the memory's. So the heave input is v_z = z' + u (theta - theta_0), the

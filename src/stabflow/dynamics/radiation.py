@@ -19,7 +19,7 @@ written in the time domain by the kernel (``_kernels_6dof._memory``): each secti
 vertical velocity is z' - x theta' + u (theta - theta_0), its force the -(d/dt - u d/dx) of its
 momentum, and the flow leaves a transom stern with the momentum of the transom's section (its
 added mass by Lewis's map, :func:`transom`). For harmonic motions they are STF's table with the
-transom's added mass (B35, B53 -+ U A33; A35, A53 -+ U B33 / w_e^2; A55 + U^2 A33 / w_e^2, B55 +
+transom's added mass (B35, B53 +- U A33; A35, A53 -+ U B33 / w_e^2; A55 + U^2 A33 / w_e^2, B55 +
 U^2 B33 / w_e^2, and the transom's terms: :func:`forward_speed_coefficients`), which grow as the
 encounter frequency falls. Why off: the excitation of the 6-DOF model is the Froude-Krylov force
 without diffraction, and STF's speed terms are balanced by the speed terms of the diffraction force
@@ -348,17 +348,16 @@ def transom(sp: xr.Dataset, xg: float, rho: float) -> tuple[float, float]:
     from the unit circle by z = M (zeta + a1 / zeta + a3 / zeta^3), half-breadth b = M (1 + a1 + a3),
     has in vertical motion, reflected in the free surface (phi = 0 there), the added mass
     rho pi M^2 ((1 + a1)^2 + 3 a3^2) / 2 (a semicircle of radius R: rho pi R^2 / 2; a flat plate of
-    half-width b: rho pi b^2 / 2). A stern whose last station is dry or of no breadth has a_T = 0."""
+    half-width b: rho pi b^2 / 2). It is the boundary term of the -u d/dx part at the hull's aft end,
+    whatever the stern: a stern that tapers to nothing has a small a_T there, a transom stern the
+    added mass of its immersed transom (taken at the last station's centre)."""
     ok = np.flatnonzero(sp["valid"].values)
     if ok.size == 0:
         return 0.0, 0.0
     i = int(ok[np.argmin(sp["x"].values[ok])])
     x_t = float(sp["x"].values[i] - 0.5 * sp["dx"].values[i]) - xg
     a1, a3 = float(sp["lewis_a1"].values[i]), float(sp["lewis_a3"].values[i])
-    b = 0.5 * float(sp["breadth"].values[i])
-    if b <= 0.0 or float(sp["draft"].values[i]) <= 0.0:
-        return x_t, 0.0
-    mm = b / (1.0 + a1 + a3)
+    mm = 0.5 * float(sp["breadth"].values[i]) / (1.0 + a1 + a3)
     return x_t, float(0.5 * rho * np.pi * mm * mm * ((1.0 + a1) ** 2 + 3.0 * a3 * a3))
 
 

@@ -110,7 +110,9 @@ def mean_wave_surge_force(model: SixDof, wavelength: float, height: float, speed
         # mean power dissipated, w_e^2 Re(X^H B X) / 2 - w_e^3 Im(X^H A X) / 2 (the second from an
         # added mass that is not symmetric, as the forward-speed terms make it), with the memory's
         # heave-pitch radiation at the encounter frequency (at speed u with its forward-speed terms)
-        A = model.p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6)
+        A = model.p[K.P_ADDED_MASS:K.P_ADDED_MASS + 36].reshape(6, 6).copy()
+        if model.memory is not None:  # its A(inf) is in the memory's A(w) below
+            A[np.ix_([K.S_Z, K.S_PITCH], [K.S_Z, K.S_PITCH])] = 0.0
         power = 0.5 * we * we * float(np.real(np.conj(X) @ B @ X)) - 0.5 * we**3 * float(np.imag(np.conj(X) @ A @ X))
         if model.memory is not None:
             from stabflow.dynamics.radiation import forward_speed_coefficients
