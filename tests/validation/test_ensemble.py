@@ -50,14 +50,14 @@ def test_rows_exist_with_kinds_and_statuses(rows):
     seaway = _by_name(rows, "seaway:")
     assert len(seaway) == 5 and all(c.kind == "independent" for c in seaway)
     step = _by_name(rows, "step size:")
-    assert len(step) == 2 and all(c.kind == "consistency" for c in step)
+    assert len(step) == 3 and all(c.kind == "consistency" for c in step)
     (reg,) = _by_name(rows, "ensemble records regenerated")
     assert reg.kind == "consistency"
     skipped = [c for c in rows if c.status == "SKIPPED"]
     assert len(skipped) == 4
     assert sum("extremes step does not run" in c.reason for c in skipped) == 2
     assert sum("split-time step does not run" in c.reason for c in skipped) == 2
-    assert len(rows) == 12
+    assert len(rows) == 13
     ds = checks_dataset("barge", "ensemble", rows)  # the rows make a validation dataset
     assert list(ds["status"].values).count("SKIPPED") == 4
 
@@ -72,14 +72,28 @@ def test_seaway_rows_pass_with_the_test_tolerances(rows):
 
 
 def test_step_rows(rows):
-    """Records regenerate bit for bit; roll sigma and q0.999 at dt = 0.5 s agree with dt = 0.1 s."""
+    """Records regenerate bit for bit; the roll trajectory over 30 s, roll sigma and q0.999 at
+    dt = 0.5 s agree with dt = 0.1 s."""
     (reg,) = _by_name(rows, "ensemble records regenerated")
     assert reg.value == 0.0 and reg.status == "PASS"
-    sig, q = _by_name(rows, "step size:")
+    traj, sig, q = _by_name(rows, "step size:")
+    assert "roll trajectory over the first 30 s of 6 records at dt = 0.5 s vs dt = 0.1 s" in traj.check
+    assert traj.tolerance == 1.0 and traj.status == "PASS" and 0.0 < traj.value < 1.0, traj.value
     assert "dt = 0.5 s vs dt = 0.1 s" in sig.check and sig.tolerance == 0.5 and q.tolerance == 1.0
     assert sig.unit == q.unit == "%"
     assert sig.status == "PASS" and q.status == "PASS", (sig.value, q.value)
     assert "capsized records" in sig.reference and "degree" in sig.reference
+
+
+def test_trajectory_error_grows_with_the_step_and_fails_when_too_long(model):
+    """The trajectory measure is small at a converged step and beyond its tolerance at a step
+    of a quarter of the roll period, where RK4 misses the motion (the row can fail)."""
+    from stabflow.validation.ensemble import TOL_TRAJECTORY, trajectory_error
+
+    good = trajectory_error(model, [0, 1], 0.5, 0.1)
+    coarse = dataclasses.replace(model, cond=dict(model.cond, dt=2.5))
+    bad = trajectory_error(coarse, [0, 1], 2.5, 0.5)
+    assert good < 0.5 * TOL_TRAJECTORY < 2.0 * TOL_TRAJECTORY < bad, (good, bad)
 
 
 def test_regeneration_detects_a_model_that_is_not_the_ensembles(model, ens):
@@ -90,7 +104,7 @@ def test_regeneration_detects_a_model_that_is_not_the_ensembles(model, ens):
     reg = step_checks(model, other, records=2)[0]
     assert reg.status == "FAIL" and reg.value == pytest.approx(0.01 / 1.01, rel=1e-6)
     empty = step_checks(model, ens.isel(record=slice(0, 0)))
-    assert len(empty) == 3 and all(c.status == "FAIL" for c in empty)
+    assert len(empty) == 4 and all(c.status == "FAIL" for c in empty)
     assert all("the ensemble has no record" in c.reason for c in empty)
 
 
@@ -230,9 +244,9 @@ def test_with_step_datasets_rows_are_appended(model, ens):
     bad = dataclasses.replace(model, sea=Seaway("no_such_spectrum", 3.5, 10.0, n_components=120))
     rows = ensemble_checks(bad, ens.isel(record=slice(0, 0)), _extremes([0.94, 0.78], [1.0, 1.0]),
                            _splittime([4.0e-3], [2e-3], [6e-3]))
-    assert len(rows) == 5 + 3 + 4 + 2
+    assert len(rows) == 5 + 4 + 4 + 2
     assert not any(c.status == "SKIPPED" for c in rows)
-    assert [c.status for c in rows[8:]] == ["PASS", "PASS", "FAIL", "PASS", "PASS", "PASS"]
+    assert [c.status for c in rows[9:]] == ["PASS", "PASS", "FAIL", "PASS", "PASS", "PASS"]
     assert all(isinstance(c, Check) for c in rows)
 
 

@@ -7,6 +7,7 @@
 | seaway: skewness, excess kurtosis of the elevation | Gaussian sea (0, 0) | 0.05, 0.1 | independent |
 | seaway: largest distance of the elevation's CDF from the normal CDF (-3 to 3 sigma) | standard normal | 0.01 | independent |
 | ensemble records regenerated from (seed, record) at dt | the ensemble's stored per-record moment sums | 1e-9 (relative) | consistency |
+| step size: roll (6-DOF: and yaw) trajectory over the first 30 s of 10 records at dt vs dt / 5, largest difference / largest value | the same records at dt / 5 | 1 % | consistency |
 | step size: roll standard deviation at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 0.5 % | consistency |
 | step size: 0.999 quantile of abs(roll) at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 1 % | consistency |
 | extremes, per target angle: coverage of the brute-force rate by the interval over the samples | brute-force count of the declustered |roll| maxima (capsizes included) in the rest of the ensemble | >= 0.90 | independent |
@@ -36,7 +37,13 @@ Step size
     Hs 8.5 m, 10 kn: sigma -0.003 %, q0.999 +0.05 % (200 and 400 records: -0.09 %, -0.19 %); barge
     beam sea Hs 3.5 m: sigma -0.23 %, q0.999 -0.59 % (the test profile's 24 records: +0.02 %,
     +0.82 %; the 178 of 200 records that capsize at none of 0.5, 0.25, 0.1, 0.05 s: -0.27 %,
-    -0.83 %, and 0.1 s vs 0.05 s: -0.00 %, -0.07 %). The run at dt is also
+    -0.83 %, and 0.1 s vs 0.05 s: -0.00 %, -0.07 %). In chaotic records (steep stern-quartering
+    seas with the 6-DOF model, parametric roll) two records of different steps part after a minute
+    or so however small the steps, and the statistics of 100 records then compare two realisations:
+    the trajectory row measures the step where the records are still predictable, the first
+    ``TRAJECTORY_S`` seconds of the first ``TRAJECTORY_RECORDS`` records (roll, and yaw for 6-DOF,
+    each relative to its largest value there: ``benchmarks/bench_six_dof.py``'s criterion of a
+    converged step). The run at dt is also
     compared with the ensemble's own per-record moment sums: ``model`` must be the model of ``ens``
     (records regenerate bit for bit), otherwise none of these rows would describe ``ens``.
 Extremes, split-time
@@ -81,6 +88,10 @@ REFINE = 5
 TOL_SIGMA = 0.5  # %
 TOL_Q999 = 1.0  # %
 TOL_REGENERATION = 1e-9  # relative, per (dof, moment order)
+#: step size, trajectory: the first TRAJECTORY_S seconds of the first TRAJECTORY_RECORDS records
+TRAJECTORY_S = 30.0
+TRAJECTORY_RECORDS = 10
+TOL_TRAJECTORY = 1.0  # % of the largest value (benchmarks/bench_six_dof.py's converged step)
 
 #: extremes and split-time acceptance (the criterion set for the statistics of the project)
 MIN_COVERAGE = 0.90
@@ -236,6 +247,31 @@ def _rerun(model, dt: float, records, threads: int = 1) -> dict[int, xr.Dataset]
     return {r: one(r) for r in recs}
 
 
+def trajectory_error(model, records, dt: float, fine: float, seconds: float = TRAJECTORY_S) -> float:
+    """Largest difference [%] between the first ``seconds`` of each of ``records`` simulated at ``dt``
+    and at ``fine`` (a divisor of dt), at the steps of dt, of roll (and yaw for 6-DOF models), each
+    relative to its largest absolute value at ``fine`` over those seconds of that record."""
+    from stabflow.dynamics._kernels import S_ROLL, S_YAW
+    from stabflow.statistics.ensemble import simulate_record
+
+    k = int(round(dt / fine))
+    short = dict(model.cond, duration=seconds, samples=0)
+    coarse = dataclasses.replace(model, cond=dict(short, dt=dt))
+    refined = dataclasses.replace(model, cond=dict(short, dt=fine))
+    dofs = (S_ROLL, S_YAW) if model.six is not None else (S_ROLL,)
+    worst = 0.0
+    for r in records:
+        sa, na = simulate_record(coarse, int(r))
+        sb, nb = simulate_record(refined, int(r))
+        n = min(na, nb // k)
+        for j in dofs:
+            ref = sb[:n * k + 1:k, j]
+            scale = float(np.max(np.abs(ref)))
+            if scale > 0.0:
+                worst = max(worst, float(np.max(np.abs(sa[:n + 1, j] - ref))) / scale)
+    return 100.0 * worst
+
+
 def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, threads: int = 1) -> list[Check]:
     """Regeneration and step-size convergence rows (consistency).
 
@@ -253,8 +289,9 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
     Returns
     -------
     list of Check
-        Regeneration at dt, roll standard deviation and 0.999 quantile of abs(roll) at dt vs dt /
-        ``REFINE`` (percent); FAIL rows with the reason when they cannot be computed.
+        Regeneration at dt, the trajectory over the first ``TRAJECTORY_S`` seconds
+        (:func:`trajectory_error`), roll standard deviation and 0.999 quantile of abs(roll) at dt vs
+        dt / ``REFINE`` (percent); FAIL rows with the reason when they cannot be computed.
 
     Notes
     -----
@@ -270,15 +307,22 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
         "reg": ("ensemble records regenerated from (seed, record) at dt = {dt:g} s ({n} records): largest relative "
                 "difference of the moment sums", "-", "per-record moment sums stored in the ensemble dataset",
                 dict(tolerance=TOL_REGENERATION)),
+        "traj": ("step size: {what} trajectory over the first {ts:g} s of {nt} records at dt = {dt:g} s vs dt = {fine:g} s: "
+                 "largest difference / largest value", "%", "the same records at dt / {r} = {fine:g} s",
+                 dict(tolerance=TOL_TRAJECTORY)),
         "sig": ("step size: roll standard deviation at dt = {dt:g} s vs dt = {fine:g} s ({n} records)", "%",
                 "the same records (same seaways) at dt / {r} = {fine:g} s", dict(tolerance=TOL_SIGMA)),
         "q": ("step size: 0.999 quantile of |roll| at dt = {dt:g} s vs dt = {fine:g} s ({n} records)", "%",
               "the same records (same seaways) at dt / {r} = {fine:g} s", dict(tolerance=TOL_Q999)),
     }
 
+    what = "roll and yaw" if model.six is not None else "roll"
+
     def spec(key, n, extra=""):
         name, unit, ref, band = rows_spec[key]
-        return name.format(dt=dt, fine=fine, n=n), unit, ref.format(r=REFINE, fine=fine) + extra, band
+        nt = min(TRAJECTORY_RECORDS, n) if isinstance(n, int) else n
+        return (name.format(dt=dt, fine=fine, n=n, what=what, ts=TRAJECTORY_S, nt=nt), unit,
+                ref.format(r=REFINE, fine=fine) + extra, band)
 
     n = "?"
     try:
@@ -301,6 +345,9 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
 
     nm, u, ref, band = spec("reg", n)
     rows = [run_check(regeneration, nm, u, ref, "consistency", **band)]
+    nm, u, ref, band = spec("traj", n)
+    rows.append(run_check(lambda: trajectory_error(model, recs[:TRAJECTORY_RECORDS], dt, fine), nm, u, ref,
+                          "consistency", **band))
 
     ca, cb = a["capsized"].values != 0, b["capsized"].values != 0
     keep = recs[~ca & ~cb]
