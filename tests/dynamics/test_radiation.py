@@ -158,6 +158,17 @@ def test_memory_states_equal_constant_coefficients_at_the_encounter_frequency(tr
     assert abs(abs(x_mem[2]) / abs(linear_regular_response(const, lam, 1.0)[2]) - 1.0) > 0.01
 
 
+def _asymmetric(mem):
+    """``mem`` with its coupling residues and A(inf) made unsymmetric (heave-pitch 1.3 and 1.2 times,
+    pitch-heave 0.7 times), so that a swap of i and j shows."""
+    res = mem.residues.copy()
+    res[0, 1] *= 1.3
+    res[1, 0] *= 0.7
+    ai = mem.added_mass_inf.copy()
+    ai[0, 1] *= 1.2
+    return Memory(mem.poles, res, ai)
+
+
 def _stf(mem, we, U, xt=0.0, at=0.0):
     """Salvesen, Tuck & Faltinsen's (1970) heave-pitch coefficients at speed U of zero-speed A, B
     (symmetric), their table of speed corrections with the transom terms of a transom at x_T of
@@ -211,7 +222,7 @@ def test_forward_speed_terms_are_strip_theory_at_the_encounter_frequency(trawler
     k = 2 * np.pi / lam
     we = np.sqrt(G * k) - k * m.speed * np.cos(np.radians(45.0))
     const = build()
-    from stabflow.dynamics.surf_riding import memory_forward_speed
+    from stabflow.dynamics.radiation import memory_forward_speed
 
     xt, at = memory_forward_speed(m)
     assert at > 0.0  # the trawler's transom
@@ -230,18 +241,14 @@ def test_forward_speed_coefficients_follow_the_kernel_with_asymmetric_fits(trawl
     from stabflow.dynamics.radiation import forward_speed_coefficients
 
     build, mem = trawler_memory
-    res = mem.residues.copy()
-    res[0, 1] *= 1.3
-    res[1, 0] *= 0.7
-    ai = mem.added_mass_inf.copy()
-    ai[0, 1] *= 1.2
-    mem = Memory(mem.poles, res, ai)
+    mem = _asymmetric(mem)
+    res, ai = mem.residues, mem.added_mass_inf
     m = build(mem, forward_speed=True)
     lam = 30.0
     k = 2 * np.pi / lam
     we = np.sqrt(G * k) - k * m.speed * np.cos(np.radians(45.0))
     const = build()
-    from stabflow.dynamics.surf_riding import memory_forward_speed
+    from stabflow.dynamics.radiation import memory_forward_speed
 
     tr = memory_forward_speed(m)
     Au, Bu = (x[0] for x in forward_speed_coefficients(mem, [we], m.speed, tr))
@@ -294,7 +301,7 @@ def test_mean_wave_force_uses_the_damping_at_the_encounter_frequency(trawler_mem
     from stabflow.dynamics.radiation import forward_speed_coefficients
 
     m_fwd = build(mem, heading=0.0, forward_speed=True)
-    from stabflow.dynamics.surf_riding import memory_forward_speed
+    from stabflow.dynamics.radiation import memory_forward_speed
 
     tr = memory_forward_speed(m_fwd)
     p_fwd = _frozen_at(const, mem, we, tuple(x[0] for x in forward_speed_coefficients(mem, [we], u, tr)))
@@ -402,15 +409,11 @@ def test_mean_wave_force_is_the_mean_power_of_the_radiation_forces(trawler_memor
     A(inf) are not symmetric, so that the power of the added mass's antisymmetric part counts."""
     from stabflow.dynamics.broaching import with_condition
     from stabflow.dynamics.radiation import forward_speed_coefficients
-    from stabflow.dynamics.surf_riding import mean_wave_surge_force, memory_forward_speed
+    from stabflow.dynamics.radiation import memory_forward_speed
+    from stabflow.dynamics.surf_riding import mean_wave_surge_force
 
     build, mem = trawler_memory
-    res = mem.residues.copy()
-    res[0, 1] *= 1.3
-    res[1, 0] *= 0.7
-    ai = mem.added_mass_inf.copy()
-    ai[0, 1] *= 1.2
-    mem = Memory(mem.poles, res, ai)
+    mem = _asymmetric(mem)
     lam, u = 42.7, 3.0
     k = 2 * np.pi / lam
     we = k * (np.sqrt(G / k) - u)

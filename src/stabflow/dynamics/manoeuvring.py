@@ -293,6 +293,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     der = der | dict(man.derivatives)
     q = 0.5 * rho
     p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
+    rest = initial_state(sec, st)
     m = np.zeros(K6.N_M)
     if memory is not None:
         from stabflow.dynamics.radiation import memory_parameters, transom
@@ -302,8 +303,8 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
             for b, j in enumerate(hp_):
                 p[K.P_ADDED_MASS + 6 * i + j] = memory.added_mass_inf[a, b]
                 p[K.P_DAMPING + 6 * i + j] = 0.0
-        trim = float(initial_state(sec, st)[K.S_PITCH])
-        m = np.concatenate([m, memory_parameters(memory, man.radiation_forward_speed, trim, transom(sp, lcg, rho))])
+        m = np.concatenate([m, memory_parameters(memory, man.radiation_forward_speed, float(rest[K.S_PITCH]),
+                                                 transom(sp, lcg, rho))])
     m[K6.M_SPEED] = speed
     _set_hull_derivatives(m, der, rho, L)
     zh = 0.5 * T if man.side_force_height is None else float(man.side_force_height)
@@ -358,7 +359,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     cd = crossflow_drag_coefficient(sp["breadth"].values, sp["draft"].values)
     strips = np.column_stack([sp["x"].values[ok] - lcg, q * (sp["draft"].values * cd * sp["dx"].values)[ok]])
     s0 = np.zeros(K6.N_STATE6 + (0 if memory is None else memory.n_states))
-    s0[:K.N_STATE] = initial_state(sec, st)
+    s0[:K.N_STATE] = rest
     s0[K6.S_HELM] = 1.0
     return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der, memory)
 

@@ -420,6 +420,19 @@ def memory_parameters(mem: Memory, forward_speed: bool = False, trim: float = 0.
     return out
 
 
+def memory_forward_speed(model) -> tuple[float, float] | None:
+    """The transom (x_T [m], a_T [kg/m]) if the 6-DOF model's radiation memory carries strip
+    theory's forward-speed terms (the flag after the residues in ``model.m``), else None."""
+    from stabflow.dynamics import _kernels_6dof as K6
+
+    if model.m.size <= K6.M_MEMORY:
+        return None
+    e = K6.M_MEMORY + 1 + 10 * int(model.m[K6.M_MEMORY])
+    if model.m.size <= e or model.m[e] == 0.0:
+        return None
+    return float(model.m[e + 2]), float(model.m[e + 3])
+
+
 def radiation_checks(ds: xr.Dataset, mem: Memory) -> list:
     """Validation rows of the memory model against the BEM coefficients ``ds`` (matrix form,
     :func:`bem_radiation` or :func:`bem_from_dataset`): the largest error over the BEM's frequencies

@@ -115,7 +115,7 @@ def mean_wave_surge_force(model: SixDof, wavelength: float, height: float, speed
             A[np.ix_([K.S_Z, K.S_PITCH], [K.S_Z, K.S_PITCH])] = 0.0
         power = 0.5 * we * we * float(np.real(np.conj(X) @ B @ X)) - 0.5 * we**3 * float(np.imag(np.conj(X) @ A @ X))
         if model.memory is not None:
-            from stabflow.dynamics.radiation import forward_speed_coefficients
+            from stabflow.dynamics.radiation import forward_speed_coefficients, memory_forward_speed
 
             fwd = memory_forward_speed(model)
             if fwd is not None:
@@ -127,17 +127,6 @@ def mean_wave_surge_force(model: SixDof, wavelength: float, height: float, speed
                 - 0.5 * we**3 * float(np.imag(np.conj(xh) @ Ah @ xh))
         out[i] = k * power / we
     return out
-
-
-def memory_forward_speed(model: SixDof) -> tuple[float, float] | None:
-    """The transom (x_T [m], a_T [kg/m]) if the 6-DOF model's radiation memory carries strip
-    theory's forward-speed terms (the flag after the residues in ``model.m``), else None."""
-    if model.m.size <= K6.M_MEMORY:
-        return None
-    e = K6.M_MEMORY + 1 + 10 * int(model.m[K6.M_MEMORY])
-    if model.m.size <= e or model.m[e] == 0.0:
-        return None
-    return float(model.m[e + 2]), float(model.m[e + 3])
 
 
 def melnikov_threshold(model: SixDof, wavelength: float, height: float, wave_force: bool = False) -> float:
