@@ -92,6 +92,16 @@ N_STATE6 = N_STATE + 2
 # the radiation memory states (4 n reals: w_jp = (re, im) for input j in (heave, pitch), pole p) follow
 S_MEMORY = N_STATE6
 
+# lift branches of a foil (paper 004 eq 9), held within a step (event location, ``_simulate6``)
+FOIL_ATTACHED = 0
+FOIL_STALLED = 1
+FOIL_REVERSED = 2
+#: the most switches of the discrete modes (foils' lift branches, rudder slew limit and stop) located
+#: within one step; beyond it the step is accepted with the modes of its end
+MAX_EVENTS = 4
+#: hysteresis of the modes' switches [rad, rad/s] (``_modes``)
+MODE_BAND = 1e-6
+
 # record status
 OK = 0
 CAPSIZED = 1
@@ -148,7 +158,34 @@ def _station_wave(xs, p, m, s, line, wave):
 
 
 @njit(cache=True, inline="always")
-def _foil_force(uf, vf, delta, rho, area, cla, stall, trail, ar, cn):
+def _lift_mode(alpha, stall, trail):
+    """The foil's lift branch at the angle of attack ``alpha`` [rad] (paper 004 eq 9): FOIL_ATTACHED
+    below the stall angle, FOIL_REVERSED within the trailing-edge stall angle of reversed flow,
+    else FOIL_STALLED."""
+    if abs(alpha) < stall:
+        return FOIL_ATTACHED
+    if math.pi - abs(alpha) < trail:
+        return FOIL_REVERSED
+    return FOIL_STALLED
+
+
+@njit(cache=True, inline="always")
+def _attack(uf, vf, delta):
+    """Angle of attack [rad] of a foil moving at (uf, vf) [m/s], chord turned by ``delta``: from the
+    upstream direction to the chord (0 without flow)."""
+    v2 = uf * uf + vf * vf
+    if v2 <= 1e-12:
+        return 0.0
+    vv = math.sqrt(v2)
+    dx = uf / vv
+    dy = vf / vv
+    cx = math.cos(delta)
+    cy = math.sin(delta)
+    return math.atan2(dx * cy - dy * cx, dx * cx + dy * cy)
+
+
+@njit(cache=True, inline="always")
+def _foil_force(uf, vf, delta, rho, area, cla, stall, trail, ar, cn, mode=-1):
     """Horizontal force (Fx, Fy) [N] of a vertical foil moving at (uf, vf) [m/s] through still water,
     chord turned by ``delta`` (nose to port for delta > 0), in the horizontal plane (span vertical).
 
@@ -158,7 +195,11 @@ def _foil_force(uf, vf, delta, rho, area, cla, stall, trail, ar, cn):
     same lifting line, C_Di = C_L^2 / (pi A_R) (Prandtl), along the flow (without it a lifting
     rudder in a turn would propel the ship). Eddy making (eqs 12, 16): the flat-plate normal force
     1/2 C_N rho V_n |V_n| S C along the chord normal, V_n the flow's normal component (C_A = C_K =
-    C_S = 1 at full-scale Reynolds numbers, eq 15): the force a stalled rudder still gives."""
+    C_S = 1 at full-scale Reynolds numbers, eq 15): the force a stalled rudder still gives.
+
+    ``mode``: the lift branch (FOIL_*), held through a step by the RK4 (the branch's formula
+    continued beyond its angles, so that the step sees a smooth force and the switch is located,
+    ``_simulate6``); -1: the branch of the angle of attack (``_lift_mode``)."""
     v2 = uf * uf + vf * vf
     if v2 <= 1e-12:
         return 0.0, 0.0
@@ -167,10 +208,12 @@ def _foil_force(uf, vf, delta, rho, area, cla, stall, trail, ar, cn):
     dy = vf / vv
     cx = math.cos(delta)
     cy = math.sin(delta)
-    alpha = math.atan2(dx * cy - dy * cx, dx * cx + dy * cy)
-    if abs(alpha) < stall:
+    alpha = _attack(uf, vf, delta)
+    if mode < 0:
+        mode = _lift_mode(alpha, stall, trail)
+    if mode == FOIL_ATTACHED:
         cl = cla * alpha
-    elif math.pi - abs(alpha) < trail:
+    elif mode == FOIL_REVERSED:
         cl = cla * (alpha - math.copysign(math.pi, alpha))
     else:
         cl = 0.0
@@ -196,10 +239,11 @@ def _heading_velocities(m, s):
 
 
 @njit(cache=True)
-def _manoeuvring_loads(p, m, foils, strips, s, delta, f):
+def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     """Add resistance, thrust, hull manoeuvring forces (linear derivatives and cross-flow drag of
     the ``strips`` (nst, 2): x from G [m] and 1/2 rho T C_D dx [kg/m]) and foil forces to the loads
-    ``f`` (6,) (force and moment about G in the heading frame)."""
+    ``f`` (6,) (force and moment about G in the heading frame). ``modes`` (nf + 2,): the foils' lift
+    branches first (``_foil_force``; -1: from the angle of attack)."""
     rho = p[P_RHO]
     c, sn, u, v = _heading_velocities(m, s)
     r = s[S_RATE + S_YAW]
@@ -230,7 +274,7 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f):
         dl = delta if foils[j, F_RUDDER] != 0.0 else 0.0
         # velocity of the foil centre: (u, v + r x_f - p z_f)
         lx, ly = _foil_force(u, v + r * xf - pr * zf, dl, rho, foils[j, F_AREA], foils[j, F_CLA],
-                             foils[j, F_STALL], foils[j, F_TRAIL], foils[j, F_AR], foils[j, F_CN])
+                             foils[j, F_STALL], foils[j, F_TRAIL], foils[j, F_AR], foils[j, F_CN], modes[j])
         fx += lx
         fy += ly
         nz += xf * ly
@@ -332,10 +376,11 @@ def _memory(p, m, s, r, ds, u):
 
 
 @njit(cache=True)
-def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, ds, f, wave, work, mq, r):
+def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, ds, f, wave, work, mq, r, modes):
     """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 3) at this time and
     the rudder angle ``delta``; the FK + HS loads see the wave heading relative to the ship,
-    beta - psi. Returns False if a station left the wave table."""
+    beta - psi; ``modes`` the discrete modes (``_modes``; the rudder rate is not written here). Returns
+    False if a station left the wave table."""
     inside = _station_wave(xs, p, m, s, line, wave)
     rel = math.atan2(p[P_SIN_BETA], p[P_COS_BETA]) - s[S_YAW]
     cb = math.cos(rel)
@@ -343,7 +388,7 @@ def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, d
     h = _origin_height(s[S_Z], s[S_ROLL], s[S_PITCH], p[P_XG], p[P_ZG])
     _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], h, s[S_ROLL], s[S_PITCH],
           cb, sb, wave, f, work)
-    _manoeuvring_loads(p, m, foils, strips, s, delta, f)
+    _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes)
     for j in range(6):
         ds[j] = s[S_RATE + j]
     _generalized_system(p, s, f, mq, r)
@@ -367,6 +412,21 @@ def _helm(m, psi, helm):
     return helm
 
 
+@njit(cache=True, inline="always")
+def _servo_rate(m, s, helm):
+    """(delta_c - delta) / tau [rad/s]: the servo's rate before its limits (``_rudder_rate``)."""
+    mode = m[M_STEERING]
+    if mode == STEER_AUTOPILOT:
+        err = s[S_YAW] - m[M_PSID]
+        err -= 2.0 * math.pi * math.floor((err + math.pi) / (2.0 * math.pi))  # to [-pi, pi)
+        dc = m[M_GA] * err + m[M_GB] * s[S_RATE + S_YAW]
+    elif mode == STEER_ZIGZAG:
+        dc = helm * m[M_HELM]
+    else:
+        dc = m[M_HELM]
+    return (dc - s[S_RUDDER]) / m[M_TAU]
+
+
 @njit(cache=True)
 def _rudder_rate(m, s, helm):
     """Rudder rate [rad/s] of the steering gear in state ``s``. The command: a constant (fixed
@@ -378,20 +438,89 @@ def _rudder_rate(m, s, helm):
     and solves eq 31 over a step with the command held (eq 32): both are first order in the step.
     Their limit dt -> 0, written here, is integrated with the motions by RK4, so that the records
     converge with the step (the closed loop of ``linearised_course_change`` is the same)."""
-    mode = m[M_STEERING]
-    if mode == STEER_AUTOPILOT:
-        err = s[S_YAW] - m[M_PSID]
-        err -= 2.0 * math.pi * math.floor((err + math.pi) / (2.0 * math.pi))  # to [-pi, pi)
-        dc = m[M_GA] * err + m[M_GB] * s[S_RATE + S_YAW]
-    elif mode == STEER_ZIGZAG:
-        dc = helm * m[M_HELM]
-    else:
-        dc = m[M_HELM]
     d = s[S_RUDDER]
-    rate = min(max((dc - d) / m[M_TAU], -m[M_SLEW]), m[M_SLEW])
+    rate = min(max(_servo_rate(m, s, helm), -m[M_SLEW]), m[M_SLEW])
     if (d >= m[M_MAX] and rate > 0.0) or (d <= -m[M_MAX] and rate < 0.0):
         return 0.0
     return rate
+
+
+@njit(cache=True, inline="always")
+def _gear_rate(m, s, helm, slew, stop):
+    """The rudder rate [rad/s] with the steering gear's modes held (``_modes``): zero at a stop, the
+    slew rate +-R_m on the slew limit, else the servo's unlimited (delta_c - delta) / tau. Equals
+    ``_rudder_rate`` where the modes are those of ``s``."""
+    if stop != 0:
+        return 0.0
+    if slew != 0:
+        return slew * m[M_SLEW]
+    return _servo_rate(m, s, helm)
+
+
+@njit(cache=True, inline="always")
+def _lift_margin(alpha, stall, trail, mode):
+    """How far [rad] the angle of attack lies inside lift branch ``mode`` (negative: outside)."""
+    a = abs(alpha)
+    b = math.pi - a
+    if mode == FOIL_ATTACHED:
+        return stall - a
+    if mode == FOIL_REVERSED:
+        return trail - b
+    return min(a - stall, b - trail)
+
+
+@njit(cache=True)
+def _modes(m, foils, s, helm, cur, out):
+    """The discrete modes of state ``s`` into ``out`` (nf + 2,): each foil's lift branch
+    (``_lift_mode``), then the steering gear's slew limit (+1, -1: the servo's rate beyond +-R_m;
+    0) and stop (+1, -1: the rudder at +-A_m with the servo pushing beyond, or past it; 0). A mode
+    of ``cur`` (the modes held so far; entries < -1: none) is kept while its margin (radians, or
+    radians per second for the servo's rate) exceeds -MODE_BAND, so that a switch once located is
+    not undone by the round-off between the interpolant it was located on and the RK4 state."""
+    c, sn, u, v = _heading_velocities(m, s)
+    r = s[S_RATE + S_YAW]
+    pr = s[S_RATE + S_ROLL]
+    d = s[S_RUDDER]
+    nf = foils.shape[0]
+    for j in range(nf):
+        dl = d if foils[j, F_RUDDER] != 0.0 else 0.0
+        a = _attack(u, v + r * foils[j, F_X] - pr * foils[j, F_Z], dl)
+        if cur[j] >= 0 and _lift_margin(a, foils[j, F_STALL], foils[j, F_TRAIL], cur[j]) > -MODE_BAND:
+            out[j] = cur[j]
+        else:
+            out[j] = _lift_mode(a, foils[j, F_STALL], foils[j, F_TRAIL])
+    rn = _servo_rate(m, s, helm)
+    dm = m[M_MAX]
+    rm = m[M_SLEW]
+    sc = cur[nf + 1]
+    if sc == 1:
+        keep = d >= dm - MODE_BAND and rn > -MODE_BAND
+    elif sc == -1:
+        keep = d <= -dm + MODE_BAND and rn < MODE_BAND
+    elif sc == 0:
+        keep = max(dm - d, -rn) > -MODE_BAND and max(dm + d, rn) > -MODE_BAND
+    else:
+        keep = False
+    if keep:
+        stop = sc
+    elif d >= dm and (rn > 0.0 or d > dm):
+        stop = 1
+    elif d <= -dm and (rn < 0.0 or d < -dm):
+        stop = -1
+    else:
+        stop = 0
+    slew = 0
+    if stop == 0:
+        sl = cur[nf]
+        if sc == 0 and ((sl == 0 and rm - abs(rn) > -MODE_BAND) or (sl == 1 and rn - rm > -MODE_BAND)
+                        or (sl == -1 and -rn - rm > -MODE_BAND)):
+            slew = sl
+        elif rn > rm:
+            slew = 1
+        elif rn < -rm:
+            slew = -1
+    out[nf] = slew
+    out[nf + 1] = stop
 
 
 @njit(cache=True, inline="always")
@@ -400,20 +529,68 @@ def _stop(m, d):
     return min(max(d, -m[M_MAX]), m[M_MAX])
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, inline="always")
+def _same(a, b):
+    for i in range(a.shape[0]):
+        if a[i] != b[i]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _stage(a, j, n, dt, theta, sub, s, helm, modes, ds, f, wave, work, mq, r):
+    """Right-hand side ``ds`` at the fraction ``theta`` of step ``n`` (line table rows j = 2 n, j + 1,
+    j + 2 at 0, 1/2, 1; between them the rows' quadratic interpolation in time, written into
+    ``sub``) with the modes held: the rudder rate of ``_gear_rate``. Returns False if a station left
+    the wave table. ``a``: the arguments of ``_simulate6`` up to ``ltab``."""
+    xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab = a
+    m[M_XI_TIME] = (n + theta) * dt
+    if theta == 0.0:
+        line = ltab[j]
+    elif theta == 0.5:
+        line = ltab[j + 1]
+    elif theta == 1.0:
+        line = ltab[j + 2]
+    else:
+        # Lagrange weights of the rows at 0, 1/2, 1
+        l0 = 2.0 * (theta - 0.5) * (theta - 1.0)
+        l1 = -4.0 * theta * (theta - 1.0)
+        l2 = 2.0 * theta * (theta - 0.5)
+        for a in range(sub.shape[0]):
+            for b in range(3):
+                sub[a, b] = l0 * ltab[j, a, b] + l1 * ltab[j + 1, a, b] + l2 * ltab[j + 2, a, b]
+        line = sub
+    nf = foils.shape[0]
+    ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, s[S_RUDDER], ds, f, wave, work, mq, r,
+               modes)
+    ds[S_RUDDER] = _gear_rate(m, s, helm, modes[nf], modes[nf + 1])
+    return ok
+
+
+@njit(cache=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints, 3)
     the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle is a state of the
-    RK4 with the rate of ``_rudder_rate``; the zig-zag helm switches at the steps. ``out``
-    (nsteps + 1, state size) receives the states; ``m[M_XI_TIME]`` is set stage by stage (``m`` is
-    the caller's working copy). Returns (index of the last step done, status: OK, CAPSIZED
-    (|roll| > phi_cap) or LEFT_TABLE)."""
+    RK4; the zig-zag helm switches at the steps. ``out`` (nsteps + 1, state size) receives the
+    states; ``m[M_XI_TIME]`` is set stage by stage (``m`` is the caller's working copy). Returns
+    (index of the last step done, status: OK, CAPSIZED (|roll| > phi_cap) or LEFT_TABLE).
+
+    Event location: the foils' lift branches (stall, paper 004 eq 9) and the steering gear's slew
+    limit and stop (eqs 33, 34) switch the right-hand side, which RK4 resolves only to the step.
+    So the modes (``_modes``) are held within a step, each branch's formula continued beyond its
+    switch; if the modes at the step's end differ, the switch is located by bisection on the step's
+    cubic Hermite interpolant (from the states and rates at both ends, fourth order like RK4), the
+    step is integrated to it, the modes change (a rudder reaching its stop is set there) and the
+    rest of the step follows, at most ``MAX_EVENTS`` times a step. Between the line table's
+    half-step rows, the wave is their quadratic interpolation in time."""
     ns = s0.shape[0]
     s = np.empty(ns)
+    sa = np.empty(ns)
     k1 = np.empty(ns)
     k2 = np.empty(ns)
     k3 = np.empty(ns)
     k4 = np.empty(ns)
+    kb = np.empty(ns)
     tmp = np.empty(ns)
     f = np.empty(6)
     mq = np.empty((6, 6))
@@ -421,38 +598,104 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
     nst = xs.shape[0]
     work = np.empty((nst, 5))
     wave = np.empty((nst, 2))
+    sub = np.empty_like(ltab[0])
+    nf = foils.shape[0]
+    modes = np.empty(nf + 2, np.int64)
+    nat = np.empty(nf + 2, np.int64)
     for q in range(ns):
         s[q] = s0[q]
         out[0, q] = s0[q]
+    none = np.full(nf + 2, -9, np.int64)
+    _modes(m, foils, s, s[S_HELM], none, modes)
+    a = (xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab)
     for n in range(nsteps):
         j = 2 * n
         helm = _helm(m, s[S_YAW], s[S_HELM])
+        if helm != s[S_HELM]:
+            _modes(m, foils, s, helm, none, modes)  # the command jumps: the gear's modes with it
         s[S_HELM] = helm
-        m[M_XI_TIME] = n * dt
-        ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j], s, _stop(m, s[S_RUDDER]), k1, f, wave,
-                   work, mq, r)
-        k1[S_RUDDER] = _rudder_rate(m, s, helm)
-        for q in range(ns):
-            tmp[q] = s[q] + 0.5 * dt * k1[q]
-        m[M_XI_TIME] = (n + 0.5) * dt
-        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, _stop(m, tmp[S_RUDDER]), k2,
-                    f, wave, work, mq, r)
-        k2[S_RUDDER] = _rudder_rate(m, tmp, helm)
-        for q in range(ns):
-            tmp[q] = s[q] + 0.5 * dt * k2[q]
-        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 1], tmp, _stop(m, tmp[S_RUDDER]), k3,
-                    f, wave, work, mq, r)
-        k3[S_RUDDER] = _rudder_rate(m, tmp, helm)
-        for q in range(ns):
-            tmp[q] = s[q] + dt * k3[q]
-        m[M_XI_TIME] = (n + 1) * dt
-        ok &= _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab[j + 2], tmp, _stop(m, tmp[S_RUDDER]), k4,
-                    f, wave, work, mq, r)
-        k4[S_RUDDER] = _rudder_rate(m, tmp, helm)
         prev = s[S_ROLL]
+        ok = True
         for q in range(ns):
-            s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
-        s[S_RUDDER] = _stop(m, s[S_RUDDER])
+            sa[q] = s[q]
+        ta = 0.0
+        events = 0
+        while True:
+            # RK4 from sa at the fraction ta of the step to its end, the modes held
+            h = (1.0 - ta) * dt
+            tm = 0.5 * (ta + 1.0)
+            ok &= _stage(a, j, n, dt, ta, sub, sa, helm, modes, k1, f, wave, work, mq, r)
+            for q in range(ns):
+                tmp[q] = sa[q] + 0.5 * h * k1[q]
+            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k2, f, wave, work, mq, r)
+            for q in range(ns):
+                tmp[q] = sa[q] + 0.5 * h * k2[q]
+            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k3, f, wave, work, mq, r)
+            for q in range(ns):
+                tmp[q] = sa[q] + h * k3[q]
+            ok &= _stage(a, j, n, dt, 1.0, sub, tmp, helm, modes, k4, f, wave, work, mq, r)
+            for q in range(ns):
+                s[q] = sa[q] + h / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
+            _modes(m, foils, s, helm, modes, nat)
+            if _same(nat, modes):
+                break
+            if events == MAX_EVENTS:
+                for q in range(nf + 2):
+                    modes[q] = nat[q]
+                break
+            # locate the first switch on the Hermite interpolant of (sa, k1) and (s, kb)
+            ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
+            lo = 0.0
+            hi = 1.0
+            for _ in range(40):
+                c = 0.5 * (lo + hi)
+                c2 = c * c
+                c3 = c2 * c
+                h00 = 2.0 * c3 - 3.0 * c2 + 1.0
+                h10 = (c3 - 2.0 * c2 + c) * h
+                h01 = -2.0 * c3 + 3.0 * c2
+                h11 = (c3 - c2) * h
+                for q in range(ns):
+                    tmp[q] = h00 * sa[q] + h10 * k1[q] + h01 * s[q] + h11 * kb[q]
+                _modes(m, foils, tmp, helm, modes, nat)
+                if _same(nat, modes):
+                    lo = c
+                else:
+                    hi = c
+            # the modes just past the switch
+            c = hi
+            c2 = c * c
+            c3 = c2 * c
+            for q in range(ns):
+                tmp[q] = ((2.0 * c3 - 3.0 * c2 + 1.0) * sa[q] + (c3 - 2.0 * c2 + c) * h * k1[q]
+                          + (-2.0 * c3 + 3.0 * c2) * s[q] + (c3 - c2) * h * kb[q])
+            _modes(m, foils, tmp, helm, modes, nat)
+            # RK4 from sa to the switch with the old modes
+            tb = ta + hi * (1.0 - ta)
+            h = (tb - ta) * dt
+            tm = 0.5 * (ta + tb)
+            ok &= _stage(a, j, n, dt, ta, sub, sa, helm, modes, k1, f, wave, work, mq, r)
+            for q in range(ns):
+                tmp[q] = sa[q] + 0.5 * h * k1[q]
+            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k2, f, wave, work, mq, r)
+            for q in range(ns):
+                tmp[q] = sa[q] + 0.5 * h * k2[q]
+            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k3, f, wave, work, mq, r)
+            for q in range(ns):
+                tmp[q] = sa[q] + h * k3[q]
+            ok &= _stage(a, j, n, dt, tb, sub, tmp, helm, modes, k4, f, wave, work, mq, r)
+            for q in range(ns):
+                sa[q] += h / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
+            for q in range(nf + 2):
+                modes[q] = nat[q]
+            if modes[nf + 1] != 0:
+                sa[S_RUDDER] = math.copysign(m[M_MAX], float(modes[nf + 1]))
+            ta = tb
+            events += 1
+        if modes[nf + 1] != 0:
+            s[S_RUDDER] = math.copysign(m[M_MAX], float(modes[nf + 1]))
+        else:
+            s[S_RUDDER] = _stop(m, s[S_RUDDER])
         _update_amplitude(prev, s)
         for q in range(ns):
             out[n + 1, q] = s[q]
