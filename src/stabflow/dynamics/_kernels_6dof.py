@@ -567,6 +567,43 @@ def _stage(a, j, n, dt, theta, sub, s, helm, modes, ds, f, wave, work, mq, r):
     return ok
 
 
+@njit(cache=True, inline="always")
+def _rk4_span(a, j, n, dt, t0, t1, sub, sa, helm, modes, k1, k2, k3, k4, tmp, out, f, wave, work, mq, r):
+    """One RK4 step from ``sa`` at the fraction ``t0`` of step ``n`` to ``t1``, the modes held: the
+    state into ``out`` (may be ``sa``), the first stage's rate stays in ``k1``. Returns False if a
+    station left the wave table."""
+    ns = sa.shape[0]
+    h = (t1 - t0) * dt
+    tm = 0.5 * (t0 + t1)
+    ok = _stage(a, j, n, dt, t0, sub, sa, helm, modes, k1, f, wave, work, mq, r)
+    for q in range(ns):
+        tmp[q] = sa[q] + 0.5 * h * k1[q]
+    ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k2, f, wave, work, mq, r)
+    for q in range(ns):
+        tmp[q] = sa[q] + 0.5 * h * k2[q]
+    ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k3, f, wave, work, mq, r)
+    for q in range(ns):
+        tmp[q] = sa[q] + h * k3[q]
+    ok &= _stage(a, j, n, dt, t1, sub, tmp, helm, modes, k4, f, wave, work, mq, r)
+    for q in range(ns):
+        out[q] = sa[q] + h / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
+    return ok
+
+
+@njit(cache=True, inline="always")
+def _hermite_state(c, h, sa, ka, sb, kb, out):
+    """The cubic Hermite interpolant at the fraction ``c`` of a span of length ``h`` [s] between the
+    states ``sa``, ``sb`` with their rates ``ka``, ``kb``, into ``out``."""
+    c2 = c * c
+    c3 = c2 * c
+    h00 = 2.0 * c3 - 3.0 * c2 + 1.0
+    h10 = (c3 - 2.0 * c2 + c) * h
+    h01 = -2.0 * c3 + 3.0 * c2
+    h11 = (c3 - c2) * h
+    for q in range(sa.shape[0]):
+        out[q] = h00 * sa[q] + h10 * ka[q] + h01 * sb[q] + h11 * kb[q]
+
+
 @njit(cache=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints, 3)
@@ -623,19 +660,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
         while True:
             # RK4 from sa at the fraction ta of the step to its end, the modes held
             h = (1.0 - ta) * dt
-            tm = 0.5 * (ta + 1.0)
-            ok &= _stage(a, j, n, dt, ta, sub, sa, helm, modes, k1, f, wave, work, mq, r)
-            for q in range(ns):
-                tmp[q] = sa[q] + 0.5 * h * k1[q]
-            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k2, f, wave, work, mq, r)
-            for q in range(ns):
-                tmp[q] = sa[q] + 0.5 * h * k2[q]
-            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k3, f, wave, work, mq, r)
-            for q in range(ns):
-                tmp[q] = sa[q] + h * k3[q]
-            ok &= _stage(a, j, n, dt, 1.0, sub, tmp, helm, modes, k4, f, wave, work, mq, r)
-            for q in range(ns):
-                s[q] = sa[q] + h / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
+            ok &= _rk4_span(a, j, n, dt, ta, 1.0, sub, sa, helm, modes, k1, k2, k3, k4, tmp, s, f, wave, work, mq, r)
             _modes(m, foils, s, helm, modes, nat)
             if _same(nat, modes):
                 break
@@ -649,43 +674,18 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
             hi = 1.0
             for _ in range(40):
                 c = 0.5 * (lo + hi)
-                c2 = c * c
-                c3 = c2 * c
-                h00 = 2.0 * c3 - 3.0 * c2 + 1.0
-                h10 = (c3 - 2.0 * c2 + c) * h
-                h01 = -2.0 * c3 + 3.0 * c2
-                h11 = (c3 - c2) * h
-                for q in range(ns):
-                    tmp[q] = h00 * sa[q] + h10 * k1[q] + h01 * s[q] + h11 * kb[q]
+                _hermite_state(c, h, sa, k1, s, kb, tmp)
                 _modes(m, foils, tmp, helm, modes, nat)
                 if _same(nat, modes):
                     lo = c
                 else:
                     hi = c
             # the modes just past the switch
-            c = hi
-            c2 = c * c
-            c3 = c2 * c
-            for q in range(ns):
-                tmp[q] = ((2.0 * c3 - 3.0 * c2 + 1.0) * sa[q] + (c3 - 2.0 * c2 + c) * h * k1[q]
-                          + (-2.0 * c3 + 3.0 * c2) * s[q] + (c3 - c2) * h * kb[q])
+            _hermite_state(hi, h, sa, k1, s, kb, tmp)
             _modes(m, foils, tmp, helm, modes, nat)
             # RK4 from sa to the switch with the old modes
             tb = ta + hi * (1.0 - ta)
-            h = (tb - ta) * dt
-            tm = 0.5 * (ta + tb)
-            ok &= _stage(a, j, n, dt, ta, sub, sa, helm, modes, k1, f, wave, work, mq, r)
-            for q in range(ns):
-                tmp[q] = sa[q] + 0.5 * h * k1[q]
-            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k2, f, wave, work, mq, r)
-            for q in range(ns):
-                tmp[q] = sa[q] + 0.5 * h * k2[q]
-            ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k3, f, wave, work, mq, r)
-            for q in range(ns):
-                tmp[q] = sa[q] + h * k3[q]
-            ok &= _stage(a, j, n, dt, tb, sub, tmp, helm, modes, k4, f, wave, work, mq, r)
-            for q in range(ns):
-                sa[q] += h / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
+            ok &= _rk4_span(a, j, n, dt, ta, tb, sub, sa, helm, modes, k1, k2, k3, k4, tmp, sa, f, wave, work, mq, r)
             for q in range(nf + 2):
                 modes[q] = nat[q]
             if modes[nf + 1] != 0:
