@@ -604,7 +604,7 @@ def _hermite_state(c, h, sa, ka, sb, kb, out):
         out[q] = h00 * sa[q] + h10 * ka[q] + h01 * sb[q] + h11 * kb[q]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints, 3)
     the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle is a state of the
