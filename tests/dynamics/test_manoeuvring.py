@@ -202,6 +202,13 @@ def test_crossflow_drag_coefficient_follows_hoerner():
     assert crossflow_drag_coefficient(0.02, 1.0) == pytest.approx(1.96608, rel=1e-3)   # flat plate end
 
 
+def _gear(m, s, helm):
+    """The steering gear's rate in state ``s``: its modes from the state (no foils), then the rate."""
+    modes = np.empty(2, np.int64)
+    K6._modes(m, np.zeros((0, K6.F_N)), s, helm, np.full(2, -9, np.int64), modes)
+    return K6._gear_rate(m, s, helm, modes[0], modes[1])
+
+
 def test_rudder_servo_paper_004_eqs_30_to_34():
     """The continuous steering gear: PD command (eq 30 with psi'), first-order lag (eq 31), slew
     limit (eq 33), stop (eq 34); the zig-zag helm reverses when the heading passes the switch."""
@@ -214,32 +221,32 @@ def test_rudder_servo_paper_004_eqs_30_to_34():
     # small command: (delta_c - delta) / tau with delta_c = G_a psi + G_b psi'
     s[K.S_YAW], s[K.S_RATE + K.S_YAW], s[K6.S_RUDDER] = np.radians(0.01), np.radians(0.001), np.radians(0.005)
     dc = 0.9 * np.radians(0.01) + 20.0 * np.radians(0.001)
-    assert K6._rudder_rate(m, s, 1.0) == pytest.approx((dc - np.radians(0.005)) / m[K6.M_TAU], rel=1e-12)
+    assert _gear(m, s, 1.0) == pytest.approx((dc - np.radians(0.005)) / m[K6.M_TAU], rel=1e-12)
     # a heading error beyond pi wraps to the short way round
     s[K.S_YAW], s[K.S_RATE + K.S_YAW], s[K6.S_RUDDER] = 2 * np.pi + np.radians(0.01), 0.0, 0.0
-    assert K6._rudder_rate(m, s, 1.0) == pytest.approx(0.9 * np.radians(0.01) / m[K6.M_TAU], rel=1e-9)
+    assert _gear(m, s, 1.0) == pytest.approx(0.9 * np.radians(0.01) / m[K6.M_TAU], rel=1e-9)
     # large command: the slew rate R_m
     s[K.S_YAW] = np.radians(30.0)
-    assert K6._rudder_rate(m, s, 1.0) == pytest.approx(np.radians(5.5))
+    assert _gear(m, s, 1.0) == pytest.approx(np.radians(5.5))
     s[K.S_YAW] = np.radians(-30.0)
-    assert K6._rudder_rate(m, s, 1.0) == pytest.approx(-np.radians(5.5))
+    assert _gear(m, s, 1.0) == pytest.approx(-np.radians(5.5))
     # at the stop A_m the rate that pushes beyond is zero, the one that comes back is not
     s[K.S_YAW], s[K6.S_RUDDER] = np.radians(80.0), np.radians(35.0)
-    assert K6._rudder_rate(m, s, 1.0) == 0.0
+    assert _gear(m, s, 1.0) == 0.0
     s[K.S_YAW] = np.radians(-80.0)
-    assert K6._rudder_rate(m, s, 1.0) < 0.0
+    assert _gear(m, s, 1.0) < 0.0
     assert K6._stop(m, np.radians(36.0)) == pytest.approx(np.radians(35.0))
     # fixed helm: the servo goes to the commanded angle and holds it
     m[K6.M_STEERING], m[K6.M_HELM] = K6.STEER_FIXED, 0.1
     s[K6.S_RUDDER] = 0.1
-    assert K6._rudder_rate(m, s, 1.0) == 0.0
+    assert _gear(m, s, 1.0) == 0.0
     # zig-zag: the helm reverses when the heading passes the switch angle
     m[K6.M_STEERING], m[K6.M_ZIGZAG] = K6.STEER_ZIGZAG, np.radians(10.0)
     assert K6._helm(m, np.radians(-9.0), 1.0) == 1.0
     assert K6._helm(m, np.radians(-10.5), 1.0) == -1.0
     assert K6._helm(m, np.radians(10.5), -1.0) == 1.0
     s[K6.S_RUDDER], m[K6.M_HELM] = 0.0, 0.05
-    assert K6._rudder_rate(m, s, -1.0) == pytest.approx(-0.05 / m[K6.M_TAU])
+    assert _gear(m, s, -1.0) == pytest.approx(-0.05 / m[K6.M_TAU])
 
 
 def test_records_converge_with_the_step(trawler):
@@ -255,13 +262,20 @@ def test_records_converge_with_the_step(trawler):
     model = six_dof(trawler, heading=45.0)
     waves = Seaway(kind="pierson_moskowitz", hs=1.5).components(17, 0)
     ref = simulate_six_dof(model, waves, 30.0, 0.00625)
+    err = _trajectory_error(model, waves, ref, (0.025, 0.05))
+    assert err[0.05] < 1e-5 and err[0.025] < 2e-6, err
+    assert err[0.05] / err[0.025] > 4.0, err  # first order: 2
+
+
+def _trajectory_error(model, waves, ref, dts):
+    """Largest roll and yaw difference over the record at each step of ``dts`` against ``ref``,
+    relative to the reference's largest value."""
     err = {}
-    for dt in (0.025, 0.05):
+    for dt in dts:
         ds = simulate_six_dof(model, waves, 30.0, dt)
         err[dt] = max(float(np.max(np.abs(ds[v].values - ref[v].sel(time=ds.time).values)))
                       / float(np.max(np.abs(ref[v]))) for v in ("roll", "yaw"))
-    assert err[0.05] < 1e-5 and err[0.025] < 2e-6, err
-    assert err[0.05] / err[0.025] > 4.0, err  # first order: 2
+    return err
 
 
 def _switches(model, states):
@@ -290,11 +304,7 @@ def test_event_location_keeps_rk4_order_through_stall_slew_and_stop(trawler):
     assert status == K6.OK
     assert min(_switches(model, states)) >= 1, _switches(model, states)
     ref = six_dof_dataset(model, states, 0.00625, status)
-    err = {}
-    for dt in (0.1, 0.2):
-        ds = simulate_six_dof(model, waves, 30.0, dt)
-        err[dt] = max(float(np.max(np.abs(ds[v].values - ref[v].sel(time=ds.time).values)))
-                      / float(np.max(np.abs(ref[v]))) for v in ("roll", "yaw"))
+    err = _trajectory_error(model, waves, ref, (0.1, 0.2))
     assert err[0.1] < 2e-4 and err[0.2] < 2e-3, err
     assert err[0.2] / err[0.1] > 8.0, err
 
@@ -336,7 +346,7 @@ def test_modes_switch_with_hysteresis():
     for d, helm in ((10.0, 30.0), (29.0, 30.0), (35.0, 40.0), (35.0, 30.0)):
         md = modes(d, helm)
         rate = K6._gear_rate(m, s, 1.0, md[1], md[2])
-        assert rate == pytest.approx(K6._rudder_rate(m, s, 1.0), abs=1e-15), (d, helm)
+        assert rate == pytest.approx(_gear(m, s, 1.0), abs=1e-15), (d, helm)
     # a foil held attached beyond its stall angle keeps its lift formula (the step's smooth continuation)
     fx, fy = K6._foil_force(5.0, 0.0, np.radians(30.0), 1025.0, 2.4, 3.0, np.radians(24), np.radians(12), 3.3, 0.0,
                             K6.FOIL_ATTACHED)

@@ -414,7 +414,7 @@ def _helm(m, psi, helm):
 
 @njit(cache=True, inline="always")
 def _servo_rate(m, s, helm):
-    """(delta_c - delta) / tau [rad/s]: the servo's rate before its limits (``_rudder_rate``)."""
+    """(delta_c - delta) / tau [rad/s]: the servo's rate before its limits (``_gear_rate``)."""
     mode = m[M_STEERING]
     if mode == STEER_AUTOPILOT:
         err = s[S_YAW] - m[M_PSID]
@@ -427,9 +427,10 @@ def _servo_rate(m, s, helm):
     return (dc - s[S_RUDDER]) / m[M_TAU]
 
 
-@njit(cache=True)
-def _rudder_rate(m, s, helm):
-    """Rudder rate [rad/s] of the steering gear in state ``s``. The command: a constant (fixed
+@njit(cache=True, inline="always")
+def _gear_rate(m, s, helm, slew, stop):
+    """The rudder rate [rad/s] with the steering gear's modes held (``_modes``): zero at a stop, the
+    slew rate +-R_m on the slew limit, else the servo's unlimited (delta_c - delta) / tau. The command: a constant (fixed
     mode), the PD autopilot of paper 004 eq 30, delta_c = G_a (psi - psi_d) + G_b psi', or the
     zig-zag helm +-M_HELM. The servo (eqs 31-34): tau delta' + delta = delta_c, the rate limited
     to the slew rate R_m (eq 33) and zero at the stop A_m when it pushes beyond (eq 34).
@@ -438,18 +439,6 @@ def _rudder_rate(m, s, helm):
     and solves eq 31 over a step with the command held (eq 32): both are first order in the step.
     Their limit dt -> 0, written here, is integrated with the motions by RK4, so that the records
     converge with the step (the closed loop of ``linearised_course_change`` is the same)."""
-    d = s[S_RUDDER]
-    rate = min(max(_servo_rate(m, s, helm), -m[M_SLEW]), m[M_SLEW])
-    if (d >= m[M_MAX] and rate > 0.0) or (d <= -m[M_MAX] and rate < 0.0):
-        return 0.0
-    return rate
-
-
-@njit(cache=True, inline="always")
-def _gear_rate(m, s, helm, slew, stop):
-    """The rudder rate [rad/s] with the steering gear's modes held (``_modes``): zero at a stop, the
-    slew rate +-R_m on the slew limit, else the servo's unlimited (delta_c - delta) / tau. Equals
-    ``_rudder_rate`` where the modes are those of ``s``."""
     if stop != 0:
         return 0.0
     if slew != 0:
