@@ -253,15 +253,15 @@ def test_records_converge_with_the_step(trawler):
     """With the steering gear integrated by RK4 with the motions, a record in a moderate
     stern-quartering sea (PM Hs 1.5 m, 45 degree, autopilot; the rudder meets its slew limit 13
     times in 30 s) converges at about RK4's order: measured, the largest roll and yaw errors over
-    30 s against dt = 0.00625 s, relative to their largest values, are 2.7e-6 at dt 0.05 s and
-    5.2e-7 at 0.025 s (ratio 5.2). Without the event location of the slew limit they were 4.7e-4
+    30 s against dt = 0.00625 s, relative to their largest values, are 2.6e-6 at dt 0.05 s and
+    5.2e-7 at 0.025 s (ratio 5.0; float64 wave tables). Without the event location of the slew limit they were 4.7e-4
     and 1.3e-4 (ratio 3.75); paper 004's per-step autopilot (the kernel before that) gave 3.7 % and
     1.6 %, first order."""
     from stabflow.waves.seaway import Seaway
 
     model = six_dof(trawler, heading=45.0)
     waves = Seaway(kind="pierson_moskowitz", hs=1.5).components(17, 0)
-    ref = simulate_six_dof(model, waves, 30.0, 0.00625)
+    ref = simulate_six_dof(model, waves, 30.0, 0.00625, dtype=np.float64)
     err = _trajectory_error(model, waves, ref, (0.025, 0.05))
     assert err[0.05] < 1e-5 and err[0.025] < 2e-6, err
     assert err[0.05] / err[0.025] > 4.0, err  # first order: 2
@@ -269,10 +269,11 @@ def test_records_converge_with_the_step(trawler):
 
 def _trajectory_error(model, waves, ref, dts):
     """Largest roll and yaw difference over the record at each step of ``dts`` against ``ref``,
-    relative to the reference's largest value."""
+    relative to the reference's largest value. The wave tables are float64: float32's rounding,
+    different at each step's table points, leaves a floor near 1e-7."""
     err = {}
     for dt in dts:
-        ds = simulate_six_dof(model, waves, 30.0, dt)
+        ds = simulate_six_dof(model, waves, 30.0, dt, dtype=np.float64)
         err[dt] = max(float(np.max(np.abs(ds[v].values - ref[v].sel(time=ds.time).values)))
                       / float(np.max(np.abs(ref[v]))) for v in ("roll", "yaw"))
     return err
@@ -300,7 +301,7 @@ def test_event_location_keeps_rk4_order_through_stall_slew_and_stop(trawler):
 
     model = six_dof(trawler, heading=45.0)
     waves = Seaway(kind="pierson_moskowitz", hs=4.0).components(17, 0)
-    states, _, status = run_six_dof(model, waves, 30.0, 0.00625)
+    states, _, status = run_six_dof(model, waves, 30.0, 0.00625, dtype=np.float64)
     assert status == K6.OK
     assert min(_switches(model, states)) >= 1, _switches(model, states)
     ref = six_dof_dataset(model, states, 0.00625, status)
@@ -560,6 +561,35 @@ def test_chunked_tables_continue_the_record(trawler):
     for v, tol in (("roll", 0.05), ("yaw", 0.05), ("heave", 0.005), ("sway", 0.01)):
         scale = float(np.max(np.abs(b[v])))
         assert float(np.max(np.abs(a[v] - b[v]))) < tol * scale + 1e-9, v
+
+
+def test_a_ship_leaving_its_table_continues_from_its_last_step_inside(trawler, monkeypatch):
+    """With no allowance for the drift (a table just the hull long), the ship leaves its wave table
+    five times in a minute of a turn (rudder held at 10 degree); each time the record continues from the last
+    step inside on a new table, and equals the record on a table wide enough never to be left to within
+    1e-3 of each motion's largest value."""
+    from stabflow.dynamics import manoeuvring as mv
+
+    model = six_dof(trawler, heading=30.0, autopilot=Autopilot(mode="fixed", rudder_deg=10.0))
+    rng = np.random.default_rng(8)
+    comps = (rng.uniform(0.01, 0.06, 30), np.linspace(0.5, 2.0, 30), rng.uniform(-np.pi, np.pi, 30))
+    calls = []
+    line = mv.wave_line
+    monkeypatch.setattr(mv, "wave_line", lambda *a, **k: calls.append(a[3]) or line(*a, **k))
+    monkeypatch.setattr(mv, "DRIFT_ALLOWANCE", 4.0)
+    monkeypatch.setattr(mv, "DRIFT_MARGIN", 20.0)
+    wide = simulate_six_dof(model, comps, 60.0, 0.05, chunk_s=60.0)
+    assert len(calls) == 1  # never left
+    calls.clear()
+    monkeypatch.setattr(mv, "DRIFT_ALLOWANCE", 0.0)
+    monkeypatch.setattr(mv, "DRIFT_MARGIN", 0.0)
+    tight = simulate_six_dof(model, comps, 60.0, 0.05, chunk_s=60.0)
+    assert len(calls) > 5  # left at least five times
+    assert wide.attrs["status"] == tight.attrs["status"] == K6.OK
+    assert tight.sizes["time"] == wide.sizes["time"]
+    for v in ("roll", "yaw", "heave", "sway"):  # float32 table values at other points: ~1e-5 measured
+        scale = float(np.max(np.abs(wide[v])))
+        assert float(np.max(np.abs(tight[v] - wide[v]))) < 1e-3 * scale, v
 
 
 def test_steady_turn_heels_outward(trawler):

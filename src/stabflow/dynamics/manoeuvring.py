@@ -427,7 +427,7 @@ def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: f
 
 
 def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg: float = 90.0, s0=None,
-                     points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 20.0,
+                     points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 10.0,
                      dtype=np.float32) -> xr.Dataset:
     """Simulate one 6-DOF record from the calm-water rest state (or ``s0``).
 
@@ -444,9 +444,9 @@ def simulate_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_ca
         motion that continues the calm-water one (0: the full wave from the start).
     chunk_s : float
         Irregular waves are tabulated in chunks of this length [s] on a line of points that move
-        with G's drift along the waves at its rate at the chunk's start, covering the hull and
-        ``DRIFT_ALLOWANCE`` (2 m/s) of change of that rate either way; a chunk the ship leaves is
-        tabulated again twice as wide.
+        with G's drift along the waves at its rate at the chunk's start, covering the hull,
+        ``DRIFT_ALLOWANCE`` (0.5 m/s) of change of that rate and ``DRIFT_MARGIN`` (2 m) either way;
+        a ship that leaves its table continues from its last step inside on a new chunk.
     dtype : numpy dtype
         Of the irregular-wave table (float32 halves its cost, as the 3-DOF ensembles' tables).
 
@@ -482,13 +482,16 @@ def _check_memory(model: SixDof, dt: float) -> None:
                                 f"pole |l| = {fast:.3g} 1/s needs dt <= {MEMORY_STEP_LIMIT / fast:.3g} s)")
 
 
-#: allowance for the change of the ship's drift rate along the waves over a chunk [m/s] (the wave line
-#: table covers the drift at the chunk's starting rate plus this either way)
-DRIFT_ALLOWANCE = 2.0
+#: allowance for the change of the ship's drift rate along the waves over a chunk [m/s] and a fixed
+#: margin [m]: the wave line table covers the hull plus DRIFT_ALLOWANCE x the chunk's length plus
+#: DRIFT_MARGIN either way around the drift at the chunk's starting rate; a ship that leaves it
+#: continues from its last step inside on a new table centred on it (``run_six_dof``)
+DRIFT_ALLOWANCE = 0.5
+DRIFT_MARGIN = 2.0
 
 
 def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg: float = 90.0, s0=None,
-                points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 20.0, dtype=np.float32,
+                points_per_wavelength: float = 8.0, ramp_s: float = 0.0, chunk_s: float = 10.0, dtype=np.float32,
                 t0: float = 0.0):
     """States (n + 1, state size: N_STATE6 and the memory states) of one 6-DOF record, the last step
     done n and the status (0 ok, 1 capsized); the arguments as :func:`simulate_six_dof`, the record
@@ -507,12 +510,11 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
         n1 = min(nsteps, n0 + per)
         s = out[n0]
         # the line table follows G's drift along xi in the moving frame at its present rate; the
-        # points cover the hull plus an allowance for the change of that rate over the chunk (a
-        # chunk the ship leaves is redone wider)
+        # points cover the hull plus an allowance for the change of that rate over the chunk
         span = (n1 - n0) * dt
         rate = s[K.S_RATE + K.S_X] * cb + s[K.S_RATE + K.S_Y] * sb
         centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb
-        reach = hull + DRIFT_ALLOWANCE * span
+        reach = hull + DRIFT_ALLOWANCE * span + DRIFT_MARGIN
         while True:
             ltab, xi0, h, wrap = wave_line(model, waves, t0 + n0 * dt, n1 - n0, dt, centre, reach,
                                            points_per_wavelength, dtype, drift=rate)
@@ -526,8 +528,14 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
                                          np.radians(phi_cap_deg), out[n0:n1 + 1])
             if status != K6.LEFT_TABLE:
                 break
-            reach *= 2.0
+            # a station left the table in the last step done: the steps before it saw the wave
+            # everywhere, so the record continues from the last of them on a new table around the
+            # ship (leaving in the first step: the same chunk on a table twice as wide)
             status = K6.OK
+            done -= 1
+            if done > 0:
+                break
+            reach *= 2.0
         n0 += done
     return out[:n0 + 1], n0, status
 
