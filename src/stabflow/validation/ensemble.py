@@ -10,6 +10,7 @@
 | step size: roll (6-DOF: and yaw) trajectory over the first 30 s of 10 records at dt vs dt / 5, largest difference / largest value (at least 1 degree) | the same records at dt / 5 | 1 % | consistency |
 | step size: roll standard deviation at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 0.5 % | consistency |
 | step size: 0.999 quantile of abs(roll) at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 1 % | consistency |
+| step size, sigma and q0.999: paired-bootstrap 95 % interval of the effect (its largest bound) | the same records at dt / 5, resampled by record together | 0.5 %, 1 % | consistency |
 | extremes, per target angle: coverage of the brute-force rate by the interval over the samples | brute-force count of the declustered |roll| maxima (capsizes included) in the rest of the ensemble | >= 0.90 | independent |
 | extremes, per target angle: median over the samples of estimate / brute force | the same brute-force count | 0.7 to 1.4 | independent |
 | split-time, per threshold: brute-force rate inside the interval (1 / 0) | capsized records among the other records (Garwood interval) | = 1 | independent |
@@ -43,7 +44,9 @@ Step size
     the trajectory row measures the step where the records are still predictable, the first
     ``TRAJECTORY_S`` seconds of the first ``TRAJECTORY_RECORDS`` records (roll, and yaw for 6-DOF,
     each relative to its largest value there: ``benchmarks/bench_six_dof.py``'s criterion of a
-    converged step). The run at dt is also
+    converged step). Beside the sigma and quantile rows, their sampling interval (``paired_step_effect``):
+    a row passes when the whole interval lies within the tolerance, and its name says whether the
+    interval holds 0, which separates a step effect from two realisations' scatter. The run at dt is also
     compared with the ensemble's own per-record moment sums: ``model`` must be the model of ``ens``
     (records regenerate bit for bit), otherwise none of these rows would describe ``ens``.
 Extremes, split-time
@@ -92,6 +95,12 @@ TOL_REGENERATION = 1e-9  # relative, per (dof, moment order)
 TRAJECTORY_S = 30.0
 TRAJECTORY_RECORDS = 10
 TOL_TRAJECTORY = 1.0  # % of the largest value (benchmarks/bench_six_dof.py's converged step)
+#: step size, sampling interval of the step's effect on sigma and q0.999: records resampled with
+#: replacement, the same draw at both steps (paired), percentile interval (Efron & Tibshirani 1993,
+#: ch. 13); a fixed seed, so that the rows are the same at every run
+BOOTSTRAP_RESAMPLES = 2000
+BOOTSTRAP_LEVEL = 0.95
+BOOTSTRAP_SEED = 20261202
 #: the trajectory's scale is at least this [rad]: a record whose roll stays below a degree (head seas)
 #: would otherwise judge the step by differences of thousandths of a degree
 TRAJECTORY_FLOOR = np.radians(1.0)
@@ -231,6 +240,79 @@ def roll_q999(ens: xr.Dataset) -> float:
     return quantile_from_histogram(h[half:] + h[:half][::-1], c[half:], 0.999)
 
 
+def record_arrays(shards: list[xr.Dataset]) -> dict[str, np.ndarray]:
+    """Per-record roll sums of one-record shard datasets (``_rerun``): samples ``n`` (R,), sums of
+    roll and roll^2 ``s1``, ``s2`` (R,) [degree, degree^2], the roll histogram folded about 0
+    ``hist`` (R, nbins) on the bin centres ``bins`` (nbins,) [degree]."""
+    first = shards[0]
+    c = first["roll_bin"].values
+    half = len(c) // 2
+    if len(c) % 2 or not np.allclose(c[half:], -c[:half][::-1]):
+        raise ValueError("roll histogram bins are not symmetric about 0")
+    n, s1, s2, hist = [], [], [], []
+    for d in shards:
+        ms = d["moment_sums"].sel(dof="roll")
+        n.append(float(d["steps"].values.sum()) + d.sizes["record"])
+        s1.append(float(ms.sel(order=1).sum()))
+        s2.append(float(ms.sel(order=2).sum()))
+        h = d["hist_roll"].values
+        hist.append(h[half:] + h[:half][::-1])
+    return dict(n=np.array(n), s1=np.array(s1), s2=np.array(s2), hist=np.array(hist, float), bins=c[half:])
+
+
+def paired_step_effect(a: dict, b: dict, resamples: int = BOOTSTRAP_RESAMPLES, level: float = BOOTSTRAP_LEVEL,
+                       seed: int = BOOTSTRAP_SEED) -> dict[str, tuple[float, float, float]]:
+    """The step's effect on roll sigma and on the 0.999 quantile of abs(roll) with its sampling
+    interval, by a paired bootstrap over records.
+
+    Parameters
+    ----------
+    a, b : dict
+        :func:`record_arrays` of the same records at the two steps (same order).
+    resamples, level, seed : int, float, int
+        Bootstrap resamples, confidence level of the interval, seed of the resampling.
+
+    Returns
+    -------
+    dict
+        ``"sig"`` and ``"q"``: (effect, lower, upper) [%], the effect 100 (x_a / x_b - 1) over all
+        records and the percentile interval of its bootstrap distribution.
+
+    Notes
+    -----
+    Each resample draws the records with replacement and sums the same records' moment sums and
+    histograms at both steps, so that what the records share (their seaways, and their first minute
+    or so before chaotic records part) cancels as it does in the effect itself. The interval is the
+    spread that a new set of as many records would give the effect: in records that stay predictable
+    it is narrow about the effect, and in chaotic records it is the two realisations' sampling scatter.
+    """
+    R = len(a["n"])
+    if R == 0 or len(b["n"]) != R:
+        raise ValueError(f"paired bootstrap needs the same records at both steps ({R} and {len(b['n'])})")
+    rng = np.random.default_rng(seed)
+    W = np.zeros((resamples + 1, R))
+    W[0] = 1.0  # row 0: all records once (the effect itself)
+    idx = rng.integers(0, R, size=(resamples, R))
+    np.add.at(W, (np.repeat(np.arange(1, resamples + 1), R), idx.ravel()), 1.0)
+
+    def stats(x):
+        N = W @ x["n"]
+        m = (W @ x["s1"]) / N
+        sig = np.sqrt(np.maximum((W @ x["s2"]) / N - m * m, 0.0))
+        H = W @ x["hist"]
+        q = np.array([quantile_from_histogram(h, x["bins"], 0.999) for h in H])
+        return sig, q
+
+    (sa, qa), (sb, qb) = stats(a), stats(b)
+    out = {}
+    tail = 50.0 * (1.0 - level)
+    for key, xa, xb in (("sig", sa, sb), ("q", qa, qb)):
+        d = 100.0 * (xa / xb - 1.0)
+        lo, hi = np.percentile(d[1:], [tail, 100.0 - tail])
+        out[key] = (float(d[0]), float(lo), float(hi))
+    return out
+
+
 def _rerun(model, dt: float, records, threads: int = 1) -> dict[int, xr.Dataset]:
     """``records`` simulated again at step ``dt``, one shard dataset per record (no time histories
     kept), so that any subset merges without simulating it again.
@@ -338,7 +420,7 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
     except Exception as exc:  # noqa: BLE001 - every row says why it could not run
         why = f"re-simulation failed: {type(exc).__name__}: {exc}"
         return [Check.failed(nm, why, u, ref, "consistency", **band) for nm, u, ref, band in
-                (spec(k, n) for k in rows_spec)]
+                (spec(k, n) for k in rows_spec)] + bootstrap_rows({}, {}, [], dt, fine, why=why, n=n)
 
     def regeneration():
         mine = a["moment_sums"].values
@@ -366,10 +448,43 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
     except Exception as exc:  # noqa: BLE001
         why = f"{type(exc).__name__}: {exc}"
         return rows + [Check.failed(nm, why, u, ref, "consistency", **band) for nm, u, ref, band in
-                       (spec(k, len(keep), extra) for k in ("sig", "q"))]
+                       (spec(k, len(keep), extra) for k in ("sig", "q"))] + bootstrap_rows({}, {}, keep, dt, fine, why=why)
     for key, v, v_ref in (("sig", sa, sb), ("q", qa, qb)):
         nm, u, ref, band = spec(key, len(keep), extra + f": {v_ref:.4g} degree (at dt = {dt:g} s: {v:.4g} degree)")
         rows.append(run_check(lambda v=v, v_ref=v_ref: 100.0 * (v / v_ref - 1.0), nm, u, ref, "consistency", **band))
+    return rows + bootstrap_rows(pa, pb, keep, dt, fine)
+
+
+def bootstrap_rows(pa: dict, pb: dict, keep, dt: float, fine: float, why: str = "", n=None) -> list[Check]:
+    """Two rows: the sampling interval of the step's effect on roll sigma and q0.999
+    (:func:`paired_step_effect` over the records ``keep`` of the re-runs ``pa``, ``pb`` at dt and
+    dt / REFINE), PASS when the whole interval lies within the tolerance of the effect's own row
+    (the step is shown adequate at the sample's resolution); FAIL when it reaches beyond, and the
+    name says whether the interval holds 0 (the records cannot tell the step's effect from their
+    sampling scatter) or not (a step effect). With ``why`` (the re-runs failed) both rows are FAIL
+    with that reason, over ``n`` records (default: ``len(keep)``)."""
+    pct = f"{100 * BOOTSTRAP_LEVEL:g} %"
+    what = {"sig": ("roll standard deviation", TOL_SIGMA), "q": ("0.999 quantile of |roll|", TOL_Q999)}
+    head = "step size: {w} at dt = {dt:g} s vs dt = {fine:g} s ({n} records): " + pct + " paired-bootstrap interval of the effect"
+    ref = (f"the same records at dt / {REFINE} = {fine:g} s, resampled with replacement by record at both steps "
+           f"({BOOTSTRAP_RESAMPLES} resamples, seed {BOOTSTRAP_SEED}, percentile interval); value: its largest |bound|, "
+           f"within the tolerance when the step is shown adequate at the sample's resolution")
+    n = len(keep) if n is None else n
+    try:
+        if why:
+            raise RuntimeError(why)
+        eff = paired_step_effect(record_arrays([pa[int(r)] for r in keep]), record_arrays([pb[int(r)] for r in keep]))
+    except Exception as exc:  # noqa: BLE001 - every row says why it could not run
+        reason = why or f"{type(exc).__name__}: {exc}"
+        return [Check.failed(head.format(w=w, dt=dt, fine=fine, n=n), reason, "%", ref, "consistency", tolerance=tol)
+                for w, tol in what.values()]
+    rows = []
+    for key, (w, tol) in what.items():
+        d, lo, hi = eff[key]
+        verdict = ("holds 0: the step's effect is within the sampling scatter of the records" if lo <= 0.0 <= hi
+                   else "excludes 0: a step effect")
+        name = head.format(w=w, dt=dt, fine=fine, n=len(keep)) + f" {d:+.2f} % in [{lo:+.2f}, {hi:+.2f}] % ({verdict})"
+        rows.append(Check(name, max(abs(lo), abs(hi)), tol, "%", ref, kind="consistency"))
     return rows
 
 
