@@ -33,11 +33,13 @@ Volume-based vs pressure integration (3 rows, independent; tolerance 4 %)
     FK force; box barge panelled at 4 m). A different method for the same loads. Measured: barge
     heave +3.71 %, roll -0.02 %, pitch +3.67 % (first harmonics instead of 0.5 ptp: roll -0.5 %);
     dtmb5415 +2.53 / +1.42 / +1.77 %. The heave and pitch excess is the sections' planar
-    waterline (see the next rows). trawler (25 m; lambda = L = 25 m, H/lambda = 1/20): heave
+    waterline (see the next rows). trawler (25 m; lambda = L_wl = 21.7 m, H/lambda = 1/17): heave
     +11.9 %, roll -57 % (5.0 vs 12.9 deg, the same over 300-400 s: a steady state, not a
-    transient), pitch -0.3 %: FAIL — a small, lightly damped hull in steep short waves, where the
-    planar waterline across each section (lambda / B = 3.3) and the large-roll response part; the
-    small-wave rows show its linear excitation already +9 / +4 / +7 % off. SKIPPED for hulls without a mesh (analytic, offsets), meshes over
+    transient), pitch -0.3 %: FAIL. Both records are parametric roll (encounter frequency 1.69
+    times the roll natural frequency): the part at half the encounter frequency is 3.5 vs 12.6 deg,
+    the directly excited part 2.29 vs 2.03 deg; over lambda/L 0.8-1.3 the volume-based model leaves
+    the instability region near lambda/L 1.0-1.1 and pressure integration does not (README, time-
+    domain model, gives the sweep). The small-wave rows show its linear excitation +9 / +4 / +7 % off. SKIPPED for hulls without a mesh (analytic, offsets), meshes over
     10,000 triangles (the DTC's 116,062 cost about 50 ms per load evaluation, some 5 min per record;
     the reference runs on the box barge), and hulls whose topsides are replaced in the config
     (``hull.topside``: the STL keeps the original ones, which these waves reach).

@@ -10,7 +10,7 @@
 | step size: roll (6-DOF: and yaw) trajectory over the first 30 s of 10 records at dt vs dt / 5, largest difference / largest value (at least 1 degree) | the same records at dt / 5 | 1 % | consistency |
 | step size: roll standard deviation at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 0.5 % | consistency |
 | step size: 0.999 quantile of abs(roll) at dt vs dt / 5 | the same records (same seaways) at dt / 5 | 1 % | consistency |
-| step size, sigma and q0.999: paired-bootstrap 95 % interval of the effect (its largest bound) | the same records at dt / 5, resampled by record together | 0.5 %, 1 % | consistency |
+| step size, sigma and q0.999: paired-bootstrap 95 % interval of the effect (its largest bound; at least 10 records) | the same records at dt / 5, resampled by record together | 0.5 %, 1 % | consistency |
 | extremes, per target angle: coverage of the brute-force rate by the interval over the samples | brute-force count of the declustered |roll| maxima (capsizes included) in the rest of the ensemble | >= 0.90 | independent |
 | extremes, per target angle: median over the samples of estimate / brute force | the same brute-force count | 0.7 to 1.4 | independent |
 | split-time, per threshold: brute-force rate inside the interval (1 / 0) | capsized records among the other records (Garwood interval) | = 1 | independent |
@@ -46,7 +46,9 @@ Step size
     each relative to its largest value there: ``benchmarks/bench_six_dof.py``'s criterion of a
     converged step). Beside the sigma and quantile rows, their sampling interval (``paired_step_effect``):
     a row passes when the whole interval lies within the tolerance, and its name says whether the
-    interval holds 0, which separates a step effect from two realisations' scatter. The run at dt is also
+    interval holds 0, which separates a step effect from two realisations' scatter. Under
+    ``BOOTSTRAP_MIN_RECORDS`` records kept the two rows FAIL with that reason (the interval still in
+    their names), and an effect that is undefined in any resample (a statistic of 0) FAILs them. The run at dt is also
     compared with the ensemble's own per-record moment sums: ``model`` must be the model of ``ens``
     (records regenerate bit for bit), otherwise none of these rows would describe ``ens``.
 Extremes, split-time
@@ -101,6 +103,11 @@ TOL_TRAJECTORY = 1.0  # % of the largest value (benchmarks/bench_six_dof.py's co
 BOOTSTRAP_RESAMPLES = 2000
 BOOTSTRAP_LEVEL = 0.95
 BOOTSTRAP_SEED = 20261202
+#: fewest records for a verdict from the interval (stabflow's choice): with fewer, the percentile
+#: interval over records is too coarse to show a step adequate (8 records give 6,435 distinct
+#: resamples, and the bootstrap's spread falls short of the sampling spread by about sqrt((n-1)/n)
+#: and more for a tail quantile); the rows then FAIL with the reason, the interval still in the name
+BOOTSTRAP_MIN_RECORDS = 10
 #: the trajectory's scale is at least this [rad]: a record whose roll stays below a degree (head seas)
 #: would otherwise judge the step by differences of thousandths of a degree
 TRAJECTORY_FLOOR = np.radians(1.0)
@@ -287,8 +294,10 @@ def paired_step_effect(a: dict, b: dict, resamples: int = BOOTSTRAP_RESAMPLES, l
     it is narrow about the effect, and in chaotic records it is the two realisations' sampling scatter.
     """
     R = len(a["n"])
-    if R == 0 or len(b["n"]) != R:
+    if len(b["n"]) != R:
         raise ValueError(f"paired bootstrap needs the same records at both steps ({R} and {len(b['n'])})")
+    if R < 2:
+        raise ValueError(f"paired bootstrap needs at least 2 records ({R} kept): one record resamples to itself")
     rng = np.random.default_rng(seed)
     W = np.zeros((resamples + 1, R))
     W[0] = 1.0  # row 0: all records once (the effect itself)
@@ -307,7 +316,13 @@ def paired_step_effect(a: dict, b: dict, resamples: int = BOOTSTRAP_RESAMPLES, l
     out = {}
     tail = 50.0 * (1.0 - level)
     for key, xa, xb in (("sig", sa, sb), ("q", qa, qb)):
-        d = 100.0 * (xa / xb - 1.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            d = 100.0 * (xa / xb - 1.0)
+        bad = int(np.count_nonzero(~np.isfinite(d)))
+        if bad:
+            name = {"sig": "roll sigma", "q": "the 0.999 quantile of |roll|"}[key]
+            raise ValueError(f"{name} is zero or not finite at the reference step in {bad} of the "
+                             f"{resamples + 1} (re)samples: the effect is undefined there")
         lo, hi = np.percentile(d[1:], [tail, 100.0 - tail])
         out[key] = (float(d[0]), float(lo), float(hi))
     return out
@@ -376,7 +391,8 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
     list of Check
         Regeneration at dt, the trajectory over the first ``TRAJECTORY_S`` seconds
         (:func:`trajectory_error`), roll standard deviation and 0.999 quantile of abs(roll) at dt vs
-        dt / ``REFINE`` (percent); FAIL rows with the reason when they cannot be computed.
+        dt / ``REFINE`` (percent), and the paired-bootstrap intervals of those two effects
+        (:func:`bootstrap_rows`); FAIL rows with the reason when they cannot be computed.
 
     Notes
     -----
@@ -458,33 +474,48 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
 def bootstrap_rows(pa: dict, pb: dict, keep, dt: float, fine: float, why: str = "", n=None) -> list[Check]:
     """Two rows: the sampling interval of the step's effect on roll sigma and q0.999
     (:func:`paired_step_effect` over the records ``keep`` of the re-runs ``pa``, ``pb`` at dt and
-    dt / REFINE), PASS when the whole interval lies within the tolerance of the effect's own row
-    (the step is shown adequate at the sample's resolution); FAIL when it reaches beyond, and the
-    name says whether the interval holds 0 (the records cannot tell the step's effect from their
-    sampling scatter) or not (a step effect). With ``why`` (the re-runs failed) both rows are FAIL
-    with that reason, over ``n`` records (default: ``len(keep)``)."""
-    pct = f"{100 * BOOTSTRAP_LEVEL:g} %"
-    what = {"sig": ("roll standard deviation", TOL_SIGMA), "q": ("0.999 quantile of |roll|", TOL_Q999)}
-    head = "step size: {w} at dt = {dt:g} s vs dt = {fine:g} s ({n} records): " + pct + " paired-bootstrap interval of the effect"
-    ref = (f"the same records at dt / {REFINE} = {fine:g} s, resampled with replacement by record at both steps "
-           f"({BOOTSTRAP_RESAMPLES} resamples, seed {BOOTSTRAP_SEED}, percentile interval); value: its largest |bound|, "
-           f"within the tolerance when the step is shown adequate at the sample's resolution")
+    dt / REFINE), judged by :func:`bootstrap_checks`. With ``why`` (the re-runs failed) both rows are
+    FAIL with that reason, over ``n`` records (default: ``len(keep)``)."""
     n = len(keep) if n is None else n
     try:
         if why:
             raise RuntimeError(why)
         eff = paired_step_effect(record_arrays([pa[int(r)] for r in keep]), record_arrays([pb[int(r)] for r in keep]))
     except Exception as exc:  # noqa: BLE001 - every row says why it could not run
-        reason = why or f"{type(exc).__name__}: {exc}"
-        return [Check.failed(head.format(w=w, dt=dt, fine=fine, n=n), reason, "%", ref, "consistency", tolerance=tol)
-                for w, tol in what.values()]
+        return bootstrap_checks(None, n, dt, fine, reason=why or f"{type(exc).__name__}: {exc}")
+    return bootstrap_checks(eff, n, dt, fine)
+
+
+def bootstrap_checks(eff: dict | None, n: int, dt: float, fine: float, reason: str = "") -> list[Check]:
+    """The two bootstrap rows from :func:`paired_step_effect`'s ``eff`` over ``n`` records: PASS when
+    the whole interval lies within the tolerance of the effect's own row (the step is shown adequate
+    at the sample's resolution); FAIL when it reaches beyond, and the name says whether the interval
+    holds 0 (the records cannot tell the step's effect from their sampling scatter) or not (a step
+    effect). FAIL with the reason, value NaN, for ``eff`` None (``reason`` says why) and for fewer
+    than ``BOOTSTRAP_MIN_RECORDS`` records (the interval stays in the name)."""
+    pct = f"{100 * BOOTSTRAP_LEVEL:g} %"
+    what = {"sig": ("roll standard deviation", TOL_SIGMA), "q": ("0.999 quantile of |roll|", TOL_Q999)}
+    head = (f"step size: {{w}} at dt = {dt:g} s vs dt = {fine:g} s ({n} records): {pct} paired-bootstrap "
+            "interval of the effect")
+    ref = (f"the same records at dt / {REFINE} = {fine:g} s, resampled with replacement by record at both steps "
+           f"({BOOTSTRAP_RESAMPLES} resamples, seed {BOOTSTRAP_SEED}, percentile interval, at least "
+           f"{BOOTSTRAP_MIN_RECORDS} records); value: its largest |bound|, within the tolerance when the step is "
+           "shown adequate at the sample's resolution")
+    if eff is None:
+        return [Check.failed(head.format(w=w), reason, "%", ref, "consistency", tolerance=tol) for w, tol in what.values()]
     rows = []
     for key, (w, tol) in what.items():
         d, lo, hi = eff[key]
         verdict = ("holds 0: the step's effect is within the sampling scatter of the records" if lo <= 0.0 <= hi
                    else "excludes 0: a step effect")
-        name = head.format(w=w, dt=dt, fine=fine, n=len(keep)) + f" {d:+.2f} % in [{lo:+.2f}, {hi:+.2f}] % ({verdict})"
-        rows.append(Check(name, max(abs(lo), abs(hi)), tol, "%", ref, kind="consistency"))
+        name = head.format(w=w) + f" {d:+.2f} % in [{lo:+.2f}, {hi:+.2f}] % ({verdict})"
+        if n < BOOTSTRAP_MIN_RECORDS:
+            rows.append(Check.failed(name, f"{n} records, fewer than {BOOTSTRAP_MIN_RECORDS}: a percentile interval "
+                                     "over so few records is too coarse to show the step adequate", "%", ref,
+                                     "consistency", tolerance=tol))
+        else:
+            # NaN-propagating: a bound that is not finite makes the row FAIL (paired_step_effect refuses it first)
+            rows.append(Check(name, float(np.max(np.abs([lo, hi]))), tol, "%", ref, kind="consistency"))
     return rows
 
 
