@@ -174,7 +174,7 @@ def test_paired_bootstrap_cancels_what_the_steps_share_and_finds_a_step_effect()
     with pytest.raises(ValueError, match="at least 2 records"):
         paired_step_effect(one, one)
     still = dict(a, s1=0.0 * a["s1"], s2=0.0 * a["s2"])  # roll identically 0 at the reference step
-    with pytest.raises(ValueError, match="roll sigma is zero or not finite"):
+    with pytest.raises(ValueError, match="the roll standard deviation is zero or not finite"):
         paired_step_effect(a, still)
 
 

@@ -108,6 +108,8 @@ BOOTSTRAP_SEED = 20261202
 #: resamples, and the bootstrap's spread falls short of the sampling spread by about sqrt((n-1)/n)
 #: and more for a tail quantile); the rows then FAIL with the reason, the interval still in the name
 BOOTSTRAP_MIN_RECORDS = 10
+#: the two step-size statistics: key of paired_step_effect -> (name in the rows, tolerance [%])
+STEP_STATISTICS = {"sig": ("roll standard deviation", TOL_SIGMA), "q": ("0.999 quantile of |roll|", TOL_Q999)}
 #: the trajectory's scale is at least this [rad]: a record whose roll stays below a degree (head seas)
 #: would otherwise judge the step by differences of thousandths of a degree
 TRAJECTORY_FLOOR = np.radians(1.0)
@@ -320,8 +322,7 @@ def paired_step_effect(a: dict, b: dict, resamples: int = BOOTSTRAP_RESAMPLES, l
             d = 100.0 * (xa / xb - 1.0)
         bad = int(np.count_nonzero(~np.isfinite(d)))
         if bad:
-            name = {"sig": "roll sigma", "q": "the 0.999 quantile of |roll|"}[key]
-            raise ValueError(f"{name} is zero or not finite at the reference step in {bad} of the "
+            raise ValueError(f"the {STEP_STATISTICS[key][0]} is zero or not finite at the reference step in {bad} of the "
                              f"{resamples + 1} (re)samples: the effect is undefined there")
         lo, hi = np.percentile(d[1:], [tail, 100.0 - tail])
         out[key] = (float(d[0]), float(lo), float(hi))
@@ -411,10 +412,9 @@ def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, thre
         "traj": ("step size: {what} trajectory over the first {ts:g} s of {nt} records at dt = {dt:g} s vs dt = {fine:g} s: "
                  "largest difference / largest value (at least 1 deg)", "%", "the same records at dt / {r} = {fine:g} s",
                  dict(tolerance=TOL_TRAJECTORY)),
-        "sig": ("step size: roll standard deviation at dt = {dt:g} s vs dt = {fine:g} s ({n} records)", "%",
-                "the same records (same seaways) at dt / {r} = {fine:g} s", dict(tolerance=TOL_SIGMA)),
-        "q": ("step size: 0.999 quantile of |roll| at dt = {dt:g} s vs dt = {fine:g} s ({n} records)", "%",
-              "the same records (same seaways) at dt / {r} = {fine:g} s", dict(tolerance=TOL_Q999)),
+        **{key: (f"step size: {w} at dt = {{dt:g}} s vs dt = {{fine:g}} s ({{n}} records)", "%",
+                 "the same records (same seaways) at dt / {r} = {fine:g} s", dict(tolerance=tol))
+           for key, (w, tol) in STEP_STATISTICS.items()},
     }
 
     what = "roll and yaw" if model.six is not None else "roll"
@@ -494,7 +494,6 @@ def bootstrap_checks(eff: dict | None, n: int, dt: float, fine: float, reason: s
     effect). FAIL with the reason, value NaN, for ``eff`` None (``reason`` says why) and for fewer
     than ``BOOTSTRAP_MIN_RECORDS`` records (the interval stays in the name)."""
     pct = f"{100 * BOOTSTRAP_LEVEL:g} %"
-    what = {"sig": ("roll standard deviation", TOL_SIGMA), "q": ("0.999 quantile of |roll|", TOL_Q999)}
     head = (f"step size: {{w}} at dt = {dt:g} s vs dt = {fine:g} s ({n} records): {pct} paired-bootstrap "
             "interval of the effect")
     ref = (f"the same records at dt / {REFINE} = {fine:g} s, resampled with replacement by record at both steps "
@@ -502,9 +501,10 @@ def bootstrap_checks(eff: dict | None, n: int, dt: float, fine: float, reason: s
            f"{BOOTSTRAP_MIN_RECORDS} records); value: its largest |bound|, within the tolerance when the step is "
            "shown adequate at the sample's resolution")
     if eff is None:
-        return [Check.failed(head.format(w=w), reason, "%", ref, "consistency", tolerance=tol) for w, tol in what.values()]
+        return [Check.failed(head.format(w=w), reason, "%", ref, "consistency", tolerance=tol)
+                for w, tol in STEP_STATISTICS.values()]
     rows = []
-    for key, (w, tol) in what.items():
+    for key, (w, tol) in STEP_STATISTICS.items():
         d, lo, hi = eff[key]
         verdict = ("holds 0: the step's effect is within the sampling scatter of the records" if lo <= 0.0 <= hi
                    else "excludes 0: a step effect")
