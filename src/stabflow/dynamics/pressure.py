@@ -2,7 +2,11 @@
 
 F = -∫∫_{S_B(t)} p n dS over the hull mesh below the incident-wave surface, with
 p = rho g (sum a cos(psi) E - z_e), E = exp(k (z_e - eta)) (Wheeler stretching) or E = 1
-("decay off", LAMP-0 without the e^{kz} term). Triangles are clipped at the
+("decay off", LAMP-0 without the e^{kz} term). With ``waterline="planar"`` each component's
+phase is linearised across the beam about the earth centreline Y = 0 at the vertex's own X,
+cos(k_x X + k_y Y - w t + e) -> cos(psi0) - k_y Y sin(psi0), psi0 = k_x X - w t + e: the
+volume-based model's straight waterline across each section (paper 000, steps 1-2), so the two
+load models can be compared with and without that assumption. Triangles are clipped at the
 wave surface (linear along edges) and pressure is taken linear between vertex values, with force
 and moment integrated exactly for that: exact hydrostatics in calm water, and converging with
 mesh refinement in waves. Pure numpy: it is the accuracy
@@ -21,7 +25,10 @@ from stabflow.constants import G
 class PressureModel:
     """Pressure integration on a triangle mesh (body axes, origin midships on the baseline)."""
 
-    def __init__(self, vertices, faces, rho, xg, zg, waves, heading_deg, speed, decay=False):
+    def __init__(self, vertices, faces, rho, xg, zg, waves, heading_deg, speed, decay=False, waterline="exact"):
+        if waterline not in ("exact", "planar"):
+            raise ValueError(f"waterline must be 'exact' or 'planar', not {waterline!r}")
+        self.waterline = waterline
         self.v = np.asarray(vertices, float)
         self.f = np.asarray(faces, int)
         self.rho, self.xg, self.zg = rho, xg, zg
@@ -39,8 +46,12 @@ class PressureModel:
         ge = earth_vertices(np.array([[self.xg, 0.0, self.zg]]), phi, theta, h)[0]
         X, Y, Z = ve.T
         if self.amp.size:
-            psi = np.outer(X, self.kx) + np.outer(Y, self.ky) - self.we * t + self.phase
-            comp = self.amp * np.cos(psi)
+            if self.waterline == "planar":
+                psi0 = np.outer(X, self.kx) - self.we * t + self.phase
+                comp = self.amp * (np.cos(psi0) - np.outer(Y, self.ky) * np.sin(psi0))
+            else:
+                psi = np.outer(X, self.kx) + np.outer(Y, self.ky) - self.we * t + self.phase
+                comp = self.amp * np.cos(psi)
             eta = comp.sum(axis=1)
             if self.decay:
                 dyn = (comp * np.exp(np.minimum(np.outer(Z - eta, self.k), 0.0))).sum(axis=1)

@@ -1,6 +1,6 @@
 """Validation rows for the 3-DOF time-domain model (:mod:`stabflow.dynamics`).
 
-:func:`dynamics_checks` returns the 21 rows below for every ship: PASS/FAIL, SKIPPED with the
+:func:`dynamics_checks` returns the 25 rows below for every ship: PASS/FAIL, SKIPPED with the
 reason where a row does not apply (no hull mesh for the pressure reference, a mesh too costly to
 integrate over a record, topsides the mesh does not carry), FAIL with the reason where its
 computation raised or gave a non-finite value. Deviations are ``100 (time domain / reference - 1)``
@@ -34,15 +34,44 @@ Volume-based vs pressure integration (3 rows, independent; tolerance 4 %)
     heave +3.71 %, roll -0.02 %, pitch +3.67 % (first harmonics instead of 0.5 ptp: roll -0.5 %);
     dtmb5415 +2.53 / +1.42 / +1.77 %. The heave and pitch excess is the sections' planar
     waterline (see the next rows). trawler (25 m; lambda = L_wl = 21.7 m, H/lambda = 1/17): heave
-    +11.9 %, roll -57 % (5.0 vs 12.9 deg, the same over 300-400 s: a steady state, not a
+    +11.9 %, roll -57 % (5.5 vs 12.9 deg, the same over 300-400 s: a steady state, not a
     transient), pitch -0.3 %: FAIL. Both records are parametric roll (encounter frequency 1.69
-    times the roll natural frequency): the part at half the encounter frequency is 3.5 vs 12.6 deg,
-    the directly excited part 2.29 vs 2.03 deg; over lambda/L 0.8-1.3 the volume-based model leaves
-    the instability region near lambda/L 1.0-1.1 and pressure integration does not (README, time-
-    domain model, gives the sweep). The small-wave rows show its linear excitation +9 / +4 / +7 % off. SKIPPED for hulls without a mesh (analytic, offsets), meshes over
+    times the roll natural frequency; the part at half the encounter frequency is 3.5 vs 12.6 deg),
+    and most of what separates them is the sections' planar waterline: at 45 deg in this short
+    wave k_y B / 2 = 0.69 rad, and the planar waterline overstates the GM variation by 71 % (the
+    GM rows below). Pressure integration with the planar waterline (``waterline="planar"``,
+    offline 2026-12-03) gives heave +2.3 %, roll -24 % (5.5 vs 7.3 deg), pitch +0.06 % against
+    the volume-based record. The rest is not isolated: held at the calm-water trim the two agree
+    within 0.5 %, held pitched by +-0.1 rad they differ by 4-5 deg in the GM variation's phase and
+    up to 4 % in its amplitude (the 3-DOF kernel keeps each station's wave at its calm-water x,
+    while the mesh's points move with pitch), and a parametric roll on the edge of its instability
+    region amplifies such differences (README, time-domain model, gives the lambda/L sweep). The
+    small-wave rows show the linear excitation +9 / +4 / +7 % off, about 1 / sinc(0.69) - 1 =
+    +8.4 % in heave. SKIPPED for hulls without a mesh (analytic, offsets), meshes over
     10,000 triangles (the DTC's 116,062 cost about 50 ms per load evaluation, some 5 min per record;
     the reference runs on the box barge), and hulls whose topsides are replaced in the config
     (``hull.topside``: the STL keeps the original ones, which these waves reach).
+GM in waves, ship held (4 rows, independent)
+    The same wave as above (lambda = L_wl, H = T/3, 45 deg, zero speed), the ship held at its
+    calm-water equilibrium: GM(t) = -dMx/dphi / (rho g V) at +-1 deg heel, 24 instants over one
+    period (:func:`restoring_in_waves`), its mean and first-harmonic amplitude (the variation that
+    drives parametric roll), volume-based kernel vs surface-pressure integration on the hull mesh
+    (decay off; no face limit, 96 load evaluations). Two references:
+
+    * *with the sections' planar waterline* (``waterline="planar"``: each component's phase is
+      linearised across the beam, the kernel's own assumption): the same loads by a different
+      integration (mesh panels against clipped sections). Tolerance 0.5 % on the mean, 2 % on the
+      variation (a difference of loads). Measured mean / variation: barge +0.01 / +0.18 %,
+      dtmb5415 +0.20 / +0.74 %, dtc +0.01 / +0.06 %, trawler +0.13 / +0.46 % (phase within 0.3 deg).
+    * *with the exact wave surface*: what the planar waterline costs. Tolerance 4 % as the rows
+      above. Measured mean / variation: barge +0.46 / +24.8 % (0.0595 against 0.0477 m: a box at
+      lambda = L in oblique waves has no GM variation at k_y = 0, so all of it comes from the
+      cross-beam structure the plane misses; 0.0478 m with 1-m panels), dtmb5415 +0.32 / +5.8 %,
+      dtc +0.40 / +5.4 %, trawler +3.8 / +71 % (0.1033 against 0.0604 m, phase -31.7 against
+      -3.0 deg): the variation rows FAIL. In head and following seas (k_y = 0, the waves step and
+      the second-generation criteria's GM in waves) the two references coincide.
+
+    SKIPPED as the rows above except for the face limit.
 Small waves vs the linear frequency-domain solution (6 rows, consistency)
     H/lambda = 1/2000, stern quartering 45 deg, lambda/L = 1, 1.5, 2, 3: first-harmonic heave,
     roll and pitch of the time-domain run (dt 0.05 s, from rest until every transient has decayed
@@ -134,6 +163,8 @@ SMALL_RATIOS = (1.0, 1.5, 2.0, 3.0)
 #: largest linear roll amplitude [degree] of the small-wave comparison (the wave is lowered below
 #: H/lambda = 1/2000 where the linear roll would exceed it, near a lightly damped roll resonance)
 MAX_LINEAR_ROLL = 0.1
+#: GM in waves (ship held): instants per wave period, half-step of the heel difference [degree]
+GM_PHASES, GM_HEEL = 24, 1.0
 #: steepness of the d2phi/dzdt comparison (lambda = L)
 DPHI_STEEPNESS = 1.0 / 50.0
 #: long head waves: lambda / L and H / lambda
@@ -153,6 +184,9 @@ TOL_LINEAR_KERNEL = 0.2
 TOL_LINEAR_PRESSURE = 4.0
 TOL_DPHI = 4.0
 TOL_LONG = 1.0
+TOL_GM_PLANAR_MEAN = 0.5
+TOL_GM_PLANAR = 2.0
+TOL_GM_EXACT = 4.0
 TOL_LONG_ROLL = 1e-6
 
 
@@ -333,6 +367,40 @@ def volume_vs_pressure(sec: Sections, st: xr.Dataset, co: Coefficients, rho: flo
     t, ref = pressure_record(mesh, sec, st, co, rho, W, heading_deg, decay=False)
     a, b = half_range(tm, mod), half_range(t, ref)
     return {"model": a, "reference": b, "deviation": 100 * (a / b - 1)}
+
+
+def restoring_in_waves(sec: Sections, st: xr.Dataset, rho: float, mesh, lam: float, height: float,
+                       heading_deg: float = QUARTERING, n_phases: int = GM_PHASES) -> dict:
+    """Metacentric height in waves of the ship held at its calm-water equilibrium, three ways.
+
+    GM(t) = -dMx/dphi / (rho g V) by central differences at +-``GM_HEEL`` (V the calm-water
+    volume, Mx about G) at ``n_phases`` instants over one wave period, regular waves of length
+    ``lam`` and height ``height`` [m], zero speed: with the volume-based kernel
+    (:class:`KernelLoads`) and with surface-pressure integration on ``mesh`` (decay off), once with
+    the sections' planar waterline (``waterline="planar"``, the kernel's assumption) and once with
+    the exact wave surface.
+
+    Returns
+    -------
+    dict
+        ``volume``, ``planar``, ``exact`` -> (mean [m], first-harmonic amplitude [m], its phase
+        [degree]).
+    """
+    V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
+    h0, th0, _ = equilibrium(sec, V, lcg, kg)
+    W = regular(height, lam)
+    we = float(W[1][0])
+    ts = np.arange(n_phases) * (2 * np.pi / we) / n_phases
+    d = np.radians(GM_HEEL)
+    models = {"volume": KernelLoads(sec, rho, lcg, kg, W, heading_deg),
+              "planar": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0, waterline="planar"),
+              "exact": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0)}
+    out = {}
+    for name, m in models.items():
+        gm = np.array([-(m.loads(t, h0, d, th0)[3] - m.loads(t, h0, -d, th0)[3]) / (2 * d * rho * G * V) for t in ts])
+        c = 2 * np.mean(gm * np.exp(1j * we * ts))
+        out[name] = (float(gm.mean()), float(abs(c)), float(np.degrees(np.angle(c))))
+    return out
 
 
 def dphi_dzdt_vs_pressure(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, mesh, lam: float,
@@ -560,7 +628,7 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
     Returns
     -------
     list of Check
-        The 19 rows described in the module docstring, in that order, every one present: PASS or
+        The 25 rows described in the module docstring, in that order, every one present: PASS or
         FAIL, SKIPPED with the reason where a check does not apply, FAIL with the reason where its
         computation raised or gave a non-finite value. Never raises for a failing computation.
     """
@@ -599,6 +667,16 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
             return volume_vs_pressure(sec, st, co, rho, mesh, float(st["lwl"]), height)
 
         return lazy.get("vvp", run)
+
+    def gm_waves():
+        def run():
+            height = float(st["draft_mid"]) / 3
+            # no face limit: 4 GM_PHASES load evaluations per model, not a time-domain record
+            mesh = mesh_for(0.5 * height, None)
+            sec, _, _ = lazy.get("geometry", geometry)
+            return restoring_in_waves(sec, st, rho, mesh, float(st["lwl"]), height)
+
+        return lazy.get("gm_waves", run)
 
     def dphi():
         def run():
@@ -665,6 +743,26 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
                          "surface-pressure integration on the hull mesh (stabflow.dynamics.pressure, decay off), "
                          "same equations, 45 deg, 0.5 ptp over 100-160 s of a record from rest",
                          "independent", tolerance=TOL_PRESSURE))
+    # --- GM in waves of the ship held at equilibrium: volume-based kernel vs surface-pressure
+    # integration, first with the kernel's own planar waterline across each section (the same
+    # loads by a different integration -> independent), then with the exact wave surface (what
+    # the planar waterline costs; it drives parametric roll)
+    for which, label, tols in (
+        ("planar", "pressure integration with the sections' planar waterline",
+         (TOL_GM_PLANAR_MEAN, TOL_GM_PLANAR)),
+        ("exact", "pressure integration (exact wave surface)", (TOL_GM_EXACT, TOL_GM_EXACT)),
+    ):
+        for j, (stat, tol) in enumerate(zip(("mean", "first-harmonic variation"), tols)):
+            row = _row(lambda which=which, j=j: 100 * (gm_waves()["volume"][j] / gm_waves()[which][j] - 1),
+                       f"GM in quartering waves lambda = L, H = T/3, ship held: {stat} vs {label}", "%",
+                       "GM(t) = -dMx/dphi / (rho g V) at +-1 deg heel, 24 instants over a wave period, ship at its "
+                       "calm-water equilibrium, 45 deg; surface-pressure integration on the hull mesh "
+                       f"(stabflow.dynamics.pressure, decay off, waterline={which!r})", "independent", tolerance=tol)
+            if row.status != "SKIPPED" and np.isfinite(row.value):
+                g = gm_waves()
+                row.reference += "; " + ", ".join(
+                    f"{k} {g[k][0]:.4f} m + {g[k][1]:.4f} m at {g[k][2]:+.1f} deg" for k in ("volume", which))
+            rows.append(row)
     # --- small waves vs the linear frequency-domain solution of the same equations -> consistency.
     # With the kernel's own FK excitation both sides are the same equations; with the pressure-
     # integrated FK excitation (decay off) the excitation comes from a different method, so the
