@@ -1,8 +1,8 @@
 """CPU-seconds per simulated hour: volume-based FK+HS vs surface-pressure integration, one run.
 
 DTMB 5415 (hull config stations, and a 21-station cut), one core, irregular-like wave of 220
-components (Bretschneider SS8, stern quartering), RK4 dt = 0.05 s. The pressure reference is timed
-over a short record and scaled. Run: python benchmarks/bench_timedomain.py
+components (Bretschneider SS8, stern quartering), RK4 dt = 0.05 s, with the planar and the curved
+waterline across the sections. The pressure reference is timed over a short record and scaled. Run: python benchmarks/bench_timedomain.py
 """
 
 import copy
@@ -49,6 +49,12 @@ def main():
         cpu = time.process_time() - t0
         print(f"volume-based, {n:3d} stations: {cpu / 0.5:8.3f} CPU-s per simulated hour "
               f"(30 min record incl. wave precomputation, roll std {float(ds['roll'].std()):.2f} deg)")
+        simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 10.0, dt, waterline="curved")  # JIT warm-up
+        t0 = time.process_time()
+        dc = simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 1800.0, dt, waterline="curved")
+        cpu_c = time.process_time() - t0
+        print(f"  curved waterline, {n:3d} stations: {cpu_c / 0.5:8.3f} CPU-s per simulated hour, "
+              f"{cpu_c / cpu:.2f} x the planar (roll std {float(dc['roll'].std()):.2f} deg)")
     tr = base.hull.get("transform", {})
     mesh = load_mesh(base.hull_file(), 1.0, False, tr.get("translate", [0, 0, 0]))
     pm = PressureModel(mesh.vertices, mesh.faces, base.rho, float(st.lcg), float(st.kg), W, 45.0, 0.0, decay=True)

@@ -80,3 +80,50 @@ def test_wigley_sections_converge_to_analytic_volume():
     ref = 4 / 9 * L * B * T + (D - T) * B * 2 * L / 3
     assert float(ds.hull_volume) == pytest.approx(ref, rel=5e-4)  # README: Wigley within 0.05 % (measured -0.011 %)
     assert ds["bonjean_area"].attrs["units"] == "m2"
+
+
+def _ring_moments(c):
+    """Shoelace area, first and second moments of a closed ring (counter-clockwise), written out
+    independently of the clipping kernel."""
+    y, z, y1, z1 = c[:-1, 0], c[:-1, 1], c[1:, 0], c[1:, 1]
+    cr = y * z1 - y1 * z
+    return np.array([cr.sum() / 2, ((y + y1) * cr).sum() / 6, ((z + z1) * cr).sum() / 6,
+                     ((y * y + y * y1 + y1 * y1) * cr).sum() / 12,
+                     ((y * z1 + 2 * y * z + 2 * y1 * z1 + y1 * z) * cr).sum() / 24,
+                     ((z * z + z * z1 + z1 * z1) * cr).sum() / 12])
+
+
+def test_section_moments_against_shapely_clipping():
+    """_section_moments (area, first and second moments of the wet section and the waterline's span
+    across the hull) against shapely's clip of the full section polygon, DTMB 5415 stations, heeled
+    waterlines up to 60 deg."""
+    from shapely.geometry import LineString, Polygon
+    from shapely.geometry.polygon import orient
+
+    from stabflow.geometry._kernels import _section_moments
+
+    from stabflow.geometry import Sections
+
+    sec = Sections(build_hull(load_ship(SHIPS / "dtmb5415.yaml")))
+    rng = np.random.default_rng(5)
+    checked = 0
+    for i in (10, 50, 90):
+        n = sec.n[i]
+        y, z = sec.y[i, :n], sec.z[i, :n]
+        full = Polygon(np.concatenate([np.column_stack([y, z]), np.column_stack([-y[::-1], z[::-1]])])).buffer(0)
+        for _ in range(5):
+            psi = rng.uniform(-1.0, 1.0)
+            a, b = np.sin(psi), np.cos(psi)
+            c = rng.uniform(0.3, 0.8) * z.max()
+            tdir, nvec = np.array([b, -a]), np.array([a, b])
+            base = c * nvec
+            half = Polygon([base + 1e3 * tdir, base - 1e3 * tdir, base - 1e3 * (tdir + nvec), base + 1e3 * (tdir - nvec)])
+            wet = orient(full.intersection(half), 1.0)
+            ref = _ring_moments(np.asarray(wet.exterior.coords))
+            got = _section_moments(y, z, n, a, b, c)
+            assert np.allclose(got[:6], ref, rtol=1e-9, atol=1e-9 * abs(ref[3])), (i, psi)
+            line = LineString([base + 1e3 * tdir, base - 1e3 * tdir]).intersection(full.boundary)
+            s = [b * p.x - a * p.y for p in getattr(line, "geoms", [line])]
+            assert got[6] == pytest.approx(min(s), abs=1e-9) and got[7] == pytest.approx(max(s), abs=1e-9)
+            checked += 1
+    assert checked == 15

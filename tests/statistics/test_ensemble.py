@@ -244,3 +244,29 @@ def test_lateral_acceleration_is_refused_for_six_dof():
                 lateral_acceleration={"height": 1.0, "limits": [1.0], "peak_floor": 0.0})
     with pytest.raises(StabflowError, match="lateral_acceleration"):
         build_model(load_ship(SHIPS / "barge.yaml"), cond)
+
+
+def test_curved_waterline_condition_runs_the_curved_kernel():
+    """``waterline: curved``: the shard's records are the curved kernel's (the same record through
+    stabflow.dynamics.simulate, float64 wave table against the ensemble's float32 one), they differ
+    from the planar ones, and the option is refused with dof 6 and the derivative model."""
+    from stabflow import StabflowError
+    from stabflow.dynamics import simulate
+
+    base = dict(load_pipeline(ROOT / "config" / "test.yaml")["ensembles"][0], name="barge_beam", duration=300.0,
+                samples=1)
+    ship = load_ship(SHIPS / "barge.yaml")
+    curved = build_model(ship, dict(base, waterline="curved"))
+    planar = build_model(ship, base)
+    out_c, last_c = simulate_record(curved, 0)
+    out_p, last_p = simulate_record(planar, 0)
+    assert last_c == last_p == curved.nsteps
+    comps = curved.sea.components(base["seed"], 0)
+    ds = simulate(curved.sec, curved.st, curved.co, ship.rho, comps, base["heading_deg"], curved.speed, 300.0,
+                  curved.dt, waterline="curved")
+    roll_c = np.degrees(out_c[:, S_ROLL])
+    assert np.abs(roll_c - ds["roll"].values).max() < 1e-4 * np.abs(roll_c).max()
+    assert np.abs(roll_c - np.degrees(out_p[:, S_ROLL])).max() > 1e-2 * np.abs(roll_c).max()
+    for bad in ({"dof": 6}, {"model": "derivative"}):
+        with pytest.raises(StabflowError, match="waterline: curved"):
+            build_model(ship, dict(base, waterline="curved", **bad))

@@ -43,10 +43,15 @@ class KernelLoads:
     depth : ndarray, optional
         Section depths for the d2phi/dzdt term (:func:`stabflow.dynamics.model.section_depths`);
         None leaves it out (the default model).
+    waterline : {"planar", "curved"}
+        The wave across each section (:func:`stabflow.dynamics.simulate`).
     """
 
     def __init__(self, sec: Sections, rho: float, xg: float, zg: float, waves, heading_deg: float,
-                 speed: float = 0.0, depth: np.ndarray | None = None):
+                 speed: float = 0.0, depth: np.ndarray | None = None, waterline: str = "planar"):
+        from stabflow.dynamics.model import _check_waterline
+
+        self.curved = _check_waterline(waterline)
         self.sec, self.rho, self.xg, self.zg = sec, rho, xg, zg
         self.waves, self.heading, self.speed, self.depth = waves, heading_deg, speed, depth
         b = np.radians(heading_deg)
@@ -58,7 +63,8 @@ class KernelLoads:
     def loads(self, t: float, h: float, phi: float, theta: float) -> np.ndarray:
         """(Fx, Fy, Fz, Mx, My, Mz) about G in earth axes [N, N m] at time ``t`` [s] for heave ``h``
         [m], roll ``phi`` and pitch ``theta`` [rad] (absolute, as the kernel's state)."""
-        w = station_wave_table(*self.waves, self.sec.x, self.heading, self.speed, np.array([float(t)]), self.depth)
+        w = station_wave_table(*self.waves, self.sec.x, self.heading, self.speed, np.array([float(t)]), self.depth,
+                               curvature=self.curved)
         K._fkhs(*self.args, self.rho, G, self.xg, self.zg, h, phi, theta, self.cb, self.sb,
               np.ascontiguousarray(w[0]), self._out, self._work)
         return self._out.copy()

@@ -306,9 +306,21 @@ def initial_state(sec: Sections, st: xr.Dataset, phi0_deg: float = 0.0) -> np.nd
     return s
 
 
+#: the wave across each section in the FK + HS kernel
+WATERLINES = ("planar", "curved")
+
+
+def _check_waterline(waterline: str) -> bool:
+    """True for the curved waterline; ValueError for an unknown name."""
+    if waterline not in WATERLINES:
+        raise ValueError(f"waterline must be one of {WATERLINES}, not {waterline!r}")
+    return waterline == "curved"
+
+
 def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves, heading_deg: float,
              speed: float, duration: float, dt: float, *, dphi_dzdt: bool = False, phi0_deg: float = 0.0,
-             phi_cap_deg: float = 90.0, tables: SectionTables | None = None) -> xr.Dataset:
+             phi_cap_deg: float = 90.0, tables: SectionTables | None = None,
+             waterline: str = "planar") -> xr.Dataset:
     """Simulate one record from the calm-water equilibrium (optionally heeled to ``phi0_deg``).
 
     Parameters
@@ -325,6 +337,10 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
         Initial heel and the capsize angle that stops the record [degree].
     tables : SectionTables, optional
         Tabulated sectional properties (fast); default: exact clipping.
+    waterline : {"planar", "curved"}
+        The wave across each section: its tangent plane at the centreline (paper 000, the default)
+        or with the cross-beam curvature terms (:func:`stabflow.dynamics._kernels._curved_sections`;
+        exact clipping, ``tables`` unused).
 
     Returns
     -------
@@ -332,6 +348,7 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     their rates [degree/s] (angles in degrees like every stabflow output), FK+HS loads; attributes
     ``capsized`` (0/1) and ``capsize_time`` [s] (record stops at the capsize angle, never NaN).
     """
+    curved = _check_waterline(waterline)
     lcg, kg = float(st["lcg"]), float(st["kg"])
     rest = initial_state(sec, st)
     th0 = rest[K.S_PITCH]
@@ -341,14 +358,15 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     depth = section_depths(sec, h0, th0) if dphi_dzdt else None
     amp, omega, phase = waves
     if len(amp):
-        wtab = station_wave_table(amp, omega, phase, sec.x, heading_deg, speed, t_half, depth)
+        wtab = station_wave_table(amp, omega, phase, sec.x, heading_deg, speed, t_half, depth, curvature=curved)
     else:
         wtab = np.zeros((len(t_half), len(sec.x), 2))
     p = parameters(co, rho, lcg, kg, heading_deg)
     s0 = rest if phi0_deg == 0.0 else initial_state(sec, st, phi0_deg)
     out = np.empty((nsteps + 1, K.N_STATE))
     forces = np.empty((nsteps + 1, 6))
-    done = _simulate(*kernel_args(sec, tables), p, wtab, dt, 0, nsteps, s0, np.radians(phi_cap_deg), out, forces)
+    done = _simulate(*kernel_args(sec, None if curved else tables), p, wtab, dt, 0, nsteps, s0,
+                     np.radians(phi_cap_deg), out, forces)
     n = done + 1
     t = np.arange(n) * dt
     r = K.S_RATE
@@ -365,5 +383,5 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     )
     capsized = int(done < nsteps)
     ds.attrs.update(capsized=capsized, capsize_time=float(t[-1]) if capsized else -1.0, dt=dt,
-                    heading_deg=heading_deg, speed=speed, dphi_dzdt=int(dphi_dzdt))
+                    heading_deg=heading_deg, speed=speed, dphi_dzdt=int(dphi_dzdt), waterline=waterline)
     return annotate(ds)

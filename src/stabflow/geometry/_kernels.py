@@ -20,16 +20,26 @@ from __future__ import annotations
 from numba import njit
 
 
-@njit(cache=True, fastmath=False)
-def _clip_half(ys, zs, n, a, b, c):
-    """Area and first moments of {a*y + b*z <= c} ∩ (half contour closed on the centreline).
+@njit(cache=True, fastmath=False, inline="always")
+def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
+    """Area, first and second moments of {a*y + b*z <= c} ∩ (half contour closed on the
+    centreline), and the span of the waterline across the hull.
 
-    Returns (area, int y dA, int z dA) [m^2, m^3, m^3]. Shoelace sums over the Sutherland-Hodgman
-    output polygon, accumulated on the fly (no allocation).
+    Returns (area, int y dA, int z dA, int y^2 dA, int y z dA, int z^2 dA, s_min, s_max) [m^2,
+    m^3, m^3, m^4, m^4, m^4, m^2]: shoelace sums over the Sutherland-Hodgman output polygon,
+    accumulated on the fly (no allocation), and the extreme values of s = p*y + q*z over the points
+    where the line crosses the hull contour (not the centreline closing edge); s_min > s_max when
+    it crosses none. With ``full`` False only the area and first moments are formed (the rest stay
+    zero and the span empty): :func:`_clip_half`'s hot path.
     """
     area = 0.0
     sy = 0.0
     sz = 0.0
+    iyy = 0.0
+    iyz = 0.0
+    izz = 0.0
+    smin = 1e300
+    smax = -1e300
     have = False
     fy = 0.0
     fz = 0.0
@@ -51,6 +61,10 @@ def _clip_half(ys, zs, n, a, b, c):
                     ey = y0 + t * (y1 - y0)
                     ez = z0 + t * (z1 - z0)
                     emit = True
+                    if full and k > 0:
+                        sv = p * ey + q * ez
+                        smin = min(smin, sv)
+                        smax = max(smax, sv)
             else:
                 if d1 <= 0.0:
                     ey = y1
@@ -62,6 +76,10 @@ def _clip_half(ys, zs, n, a, b, c):
                     area += cr
                     sy += (py + ey) * cr
                     sz += (pz + ez) * cr
+                    if full:
+                        iyy += (py * py + py * ey + ey * ey) * cr
+                        iyz += (py * ez + 2.0 * py * pz + 2.0 * ey * ez + ey * pz) * cr
+                        izz += (pz * pz + pz * ez + ez * ez) * cr
                 else:
                     fy = ey
                     fz = ez
@@ -76,7 +94,19 @@ def _clip_half(ys, zs, n, a, b, c):
         area += cr
         sy += (py + fy) * cr
         sz += (pz + fz) * cr
-    return 0.5 * area, sy / 6.0, sz / 6.0
+        if full:
+            iyy += (py * py + py * fy + fy * fy) * cr
+            iyz += (py * fz + 2.0 * py * pz + 2.0 * fy * fz + fy * pz) * cr
+            izz += (pz * pz + pz * fz + fz * fz) * cr
+    return 0.5 * area, sy / 6.0, sz / 6.0, iyy / 12.0, iyz / 24.0, izz / 12.0, smin, smax
+
+
+@njit(cache=True, fastmath=False, inline="always")
+def _clip_half(ys, zs, n, a, b, c):
+    """Area and first moments of {a*y + b*z <= c} ∩ (half contour closed on the centreline):
+    (area, int y dA, int z dA) [m^2, m^3, m^3] of :func:`_clip_half_moments`."""
+    r = _clip_half_moments(ys, zs, n, a, b, c, 0.0, 0.0, False)
+    return r[0], r[1], r[2]
 
 
 @njit(cache=True)
@@ -86,3 +116,16 @@ def _section(ys, zs, n, a, b, c):
     # starboard half in mirrored coordinates y' = -y: a -> -a, int y dA changes sign
     a2, y2, z2 = _clip_half(ys, zs, n, -a, b, c)
     return a1 + a2, y1 - y2, z1 + z2
+
+
+@njit(cache=True)
+def _section_moments(ys, zs, n, a, b, c):
+    """Both halves of a symmetric section: (area, int y dA, int z dA, int y^2 dA, int y z dA,
+    int z^2 dA, s_min, s_max) with s = b*y - a*z along the waterline a*y + b*z = c over its
+    crossings of the hull contour (:func:`_clip_half_moments`)."""
+    r1 = _clip_half_moments(ys, zs, n, a, b, c, b, -a, True)
+    # starboard half in mirrored coordinates y' = -y: a -> -a; odd moments in y change sign, and
+    # s = b y - a z = -b y' - a z
+    r2 = _clip_half_moments(ys, zs, n, -a, b, c, -b, -a, True)
+    return (r1[0] + r2[0], r1[1] - r2[1], r1[2] + r2[2], r1[3] + r2[3], r1[4] - r2[4], r1[5] + r2[5],
+            min(r1[6], r2[6]), max(r1[7], r2[7]))

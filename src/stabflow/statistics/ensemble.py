@@ -74,6 +74,11 @@ class Model:
         return float(self.cond["speed_kn"]) * KNOT
 
     @property
+    def curved(self) -> bool:
+        """The condition's ``waterline: curved`` (the kernel's cross-beam curvature terms)."""
+        return self.cond.get("waterline", "planar") == "curved"
+
+    @property
     def mid_station(self) -> int:
         return int(np.argmin(np.abs(self.sec.x)))
 
@@ -83,6 +88,12 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
     coefficients (Capytaine ``hydro`` if the ship uses it) and the sectional tables; 6-DOF
     conditions of a ship with ``manoeuvring.heave_pitch_radiation: memory`` take its memory model
     from the ``radiation`` step's dataset ``radiation`` (computed now if None)."""
+    if cond.get("waterline", "planar") == "curved" and (int(cond.get("dof", 3)) == 6
+                                                        or cond.get("model", "volume") == "derivative"):
+        from stabflow import StabflowError
+
+        raise StabflowError(f"config: ensembles: {cond.get('name', '?')}: waterline: curved is a term of the 3-DOF "
+                            "volume-based kernel; it cannot run with dof: 6 or model: derivative")
     s = ship.modified(stations=cond["stations"], kg=cond.get("kg"), dynamics=cond.get("dynamics", {}))
     hull = build_hull(s)
     st = compute_statics(s, hull)
@@ -129,7 +140,7 @@ def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
     amp, w, ph = model.sea.components(model.cond["seed"], record)
     t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
     return station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, t_half,
-                              model.depth, dtype=dtype)
+                              model.depth, dtype=dtype, curvature=model.curved)
 
 
 def record_table(model: Model, record: int):

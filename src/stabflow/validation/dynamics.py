@@ -1,6 +1,6 @@
 """Validation rows for the 3-DOF time-domain model (:mod:`stabflow.dynamics`).
 
-:func:`dynamics_checks` returns the 25 rows below for every ship: PASS/FAIL, SKIPPED with the
+:func:`dynamics_checks` returns the 30 rows below for every ship: PASS/FAIL, SKIPPED with the
 reason where a row does not apply (no hull mesh for the pressure reference, a mesh too costly to
 integrate over a record, topsides the mesh does not carry), FAIL with the reason where its
 computation raised or gave a non-finite value. Deviations are ``100 (time domain / reference - 1)``
@@ -25,14 +25,14 @@ Roll decay (2 rows, independent; tolerance 0.1 %)
 Calm-water rest (3 rows, consistency; tolerance 1e-6)
     Released at the calm-water equilibrium, max |heave| [m], |roll| and |pitch| [degree] over
     600 s (dt 0.1 s). The equilibrium and the simulation use the same kernel. Measured <= 2e-15.
-Volume-based vs pressure integration (3 rows, independent; tolerance 4 %)
+Volume-based vs pressure integration (6 rows, independent; tolerance 4 %)
     Stern-quartering (45 deg) regular waves lambda = L_wl, H = T/3: heave, roll, pitch amplitudes
     (0.5 ptp over t > 100 s of 160 s from rest, dt 0.1 s) of :func:`stabflow.dynamics.simulate` vs
     the same equations with surface-pressure-integrated loads on the hull mesh
     (:func:`stabflow.dynamics.pressure.simulate_pressure`, decay off as assumed by the volume-based
     FK force; box barge panelled at 4 m). A different method for the same loads. Measured: barge
-    heave +3.71 %, roll -0.02 %, pitch +3.67 % (first harmonics instead of 0.5 ptp: roll -0.5 %);
-    dtmb5415 +2.53 / +1.42 / +1.77 %. The heave and pitch excess is the sections' planar
+    heave +3.71 %, roll -0.59 %, pitch +3.67 %; dtmb5415 +2.59 / +1.22 / +1.77 % (2026-12-03; the
+    roll figures of earlier notes, -0.02 and +1.42 %, were stale). The heave and pitch excess is the sections' planar
     waterline (see the next rows). trawler (25 m; lambda = L_wl = 21.7 m, H/lambda = 1/17): heave
     +11.9 %, roll -57 % (5.5 vs 12.9 deg, the same over 300-400 s: a steady state, not a
     transient), pitch -0.3 %: FAIL. Both records are parametric roll (encounter frequency 1.69
@@ -47,11 +47,14 @@ Volume-based vs pressure integration (3 rows, independent; tolerance 4 %)
     while the mesh's points move with pitch), and a parametric roll on the edge of its instability
     region amplifies such differences (README, time-domain model, gives the lambda/L sweep). The
     small-wave rows show the linear excitation +9 / +4 / +7 % off, about 1 / sinc(0.69) - 1 =
-    +8.4 % in heave. SKIPPED for hulls without a mesh (analytic, offsets), meshes over
+    +8.4 % in heave. Three more rows run the kernel with ``waterline="curved"`` against the same
+    pressure records: barge +0.30 / -0.66 / +0.19 %, dtmb5415 +1.11 / +1.44 / +0.83 %, trawler
+    +2.74 / -5.22 / +1.44 % (roll 12.2 against 12.9 deg: FAIL, but the parametric roll is there).
+    SKIPPED for hulls without a mesh (analytic, offsets), meshes over
     10,000 triangles (the DTC's 116,062 cost about 50 ms per load evaluation, some 5 min per record;
     the reference runs on the box barge), and hulls whose topsides are replaced in the config
     (``hull.topside``: the STL keeps the original ones, which these waves reach).
-GM in waves, ship held (4 rows, independent)
+GM in waves, ship held (6 rows, independent)
     The same wave as above (lambda = L_wl, H = T/3, 45 deg, zero speed), the ship held at its
     calm-water equilibrium: GM(t) = -dMx/dphi / (rho g V) at +-1 deg heel, 24 instants over one
     period (:func:`restoring_in_waves`), its mean and first-harmonic amplitude (the variation that
@@ -70,6 +73,9 @@ GM in waves, ship held (4 rows, independent)
       dtc +0.40 / +5.4 %, trawler +3.8 / +71 % (0.1033 against 0.0604 m, phase -31.7 against
       -3.0 deg): the variation rows FAIL. In head and following seas (k_y = 0, the waves step and
       the second-generation criteria's GM in waves) the two references coincide.
+    * *the curved waterline against the exact surface* (tolerance 4 %): mean / variation barge
+      +0.01 / -0.39 %, dtmb5415 +0.20 / +0.75 %, dtc +0.01 / +0.03 %, trawler +0.08 / -4.07 %
+      (FAIL: k_y B / 2 = 0.69, where the quadratic term starts to fall short).
 
     SKIPPED as the rows above except for the face limit.
 Small waves vs the linear frequency-domain solution (6 rows, consistency)
@@ -320,10 +326,11 @@ def pressure_mesh(ship: Ship, max_faces: int | None = None, reach: float | None 
 
 
 def model_record(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves, heading_deg: float,
-                 duration: float, dt: float, dphi_dzdt: bool = False) -> tuple[np.ndarray, np.ndarray]:
+                 duration: float, dt: float, dphi_dzdt: bool = False,
+                 waterline: str = "planar") -> tuple[np.ndarray, np.ndarray]:
     """Time-domain record from rest as (t [s], states (n, 3)): heave [m], roll and pitch [rad] (the
     units of :func:`stabflow.dynamics.pressure.simulate_pressure`; ``simulate`` gives degrees)."""
-    ds = simulate(sec, st, co, rho, waves, heading_deg, 0.0, duration, dt, dphi_dzdt=dphi_dzdt)
+    ds = simulate(sec, st, co, rho, waves, heading_deg, 0.0, duration, dt, dphi_dzdt=dphi_dzdt, waterline=waterline)
     if ds.attrs["capsized"]:
         raise ValueError(f"the time-domain run capsized at t = {ds.attrs['capsize_time']:.1f} s")
     x = np.column_stack([ds["heave"].values, np.radians(ds["roll"].values), np.radians(ds["pitch"].values)])
@@ -361,12 +368,15 @@ def volume_vs_pressure(sec: Sections, st: xr.Dataset, co: Coefficients, rho: flo
                        heading_deg: float = QUARTERING) -> dict:
     """Heave, roll, pitch amplitudes (0.5 ptp over t > 100 s of 160 s) of the volume-based model vs
     pressure integration with the decay off, regular waves of length ``lam`` and height ``height``
-    [m]. Returns ``model``, ``reference`` (3,) [m, rad, rad] and ``deviation`` (3,) [%]."""
+    [m]. Returns ``model``, ``reference`` (3,) [m, rad, rad] and ``deviation`` (3,) [%], and the
+    same for the curved waterline (``model_curved``, ``deviation_curved``)."""
     W = regular(height, lam)
     tm, mod = model_record(sec, st, co, rho, W, heading_deg, PRESSURE_DURATION, PRESSURE_DT)
+    tc, cur = model_record(sec, st, co, rho, W, heading_deg, PRESSURE_DURATION, PRESSURE_DT, waterline="curved")
     t, ref = pressure_record(mesh, sec, st, co, rho, W, heading_deg, decay=False)
-    a, b = half_range(tm, mod), half_range(t, ref)
-    return {"model": a, "reference": b, "deviation": 100 * (a / b - 1)}
+    a, c, b = half_range(tm, mod), half_range(tc, cur), half_range(t, ref)
+    return {"model": a, "reference": b, "deviation": 100 * (a / b - 1), "model_curved": c,
+            "deviation_curved": 100 * (c / b - 1)}
 
 
 def restoring_in_waves(sec: Sections, st: xr.Dataset, rho: float, mesh, lam: float, height: float,
@@ -376,15 +386,15 @@ def restoring_in_waves(sec: Sections, st: xr.Dataset, rho: float, mesh, lam: flo
     GM(t) = -dMx/dphi / (rho g V) by central differences at +-``GM_HEEL`` (V the calm-water
     volume, Mx about G) at ``n_phases`` instants over one wave period, regular waves of length
     ``lam`` and height ``height`` [m], zero speed: with the volume-based kernel
-    (:class:`KernelLoads`) and with surface-pressure integration on ``mesh`` (decay off), once with
-    the sections' planar waterline (``waterline="planar"``, the kernel's assumption) and once with
-    the exact wave surface.
+    (:class:`KernelLoads`, its planar and its curved waterline) and with surface-pressure
+    integration on ``mesh`` (decay off), once with the sections' planar waterline
+    (``waterline="planar"``, the kernel's default assumption) and once with the exact wave surface.
 
     Returns
     -------
     dict
-        ``volume``, ``planar``, ``exact`` -> (mean [m], first-harmonic amplitude [m], its phase
-        [degree]).
+        ``volume``, ``curved``, ``planar``, ``exact`` -> (mean [m], first-harmonic amplitude [m],
+        its phase [degree]).
     """
     V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
     h0, th0, _ = equilibrium(sec, V, lcg, kg)
@@ -393,6 +403,7 @@ def restoring_in_waves(sec: Sections, st: xr.Dataset, rho: float, mesh, lam: flo
     ts = np.arange(n_phases) * (2 * np.pi / we) / n_phases
     d = np.radians(GM_HEEL)
     models = {"volume": KernelLoads(sec, rho, lcg, kg, W, heading_deg),
+              "curved": KernelLoads(sec, rho, lcg, kg, W, heading_deg, waterline="curved"),
               "planar": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0, waterline="planar"),
               "exact": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0)}
     out = {}
@@ -628,7 +639,7 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
     Returns
     -------
     list of Check
-        The 25 rows described in the module docstring, in that order, every one present: PASS or
+        The 30 rows described in the module docstring, in that order, every one present: PASS or
         FAIL, SKIPPED with the reason where a check does not apply, FAIL with the reason where its
         computation raised or gave a non-finite value. Never raises for a failing computation.
     """
@@ -743,25 +754,34 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
                          "surface-pressure integration on the hull mesh (stabflow.dynamics.pressure, decay off), "
                          "same equations, 45 deg, 0.5 ptp over 100-160 s of a record from rest",
                          "independent", tolerance=TOL_PRESSURE))
+    for j, v in enumerate(DOFS):
+        rows.append(_row(lambda j=j: vvp()["deviation_curved"][j],
+                         f"quartering waves lambda = L, H = T/3: {v} amplitude with the curved waterline vs pressure "
+                         "integration", "%",
+                         "surface-pressure integration on the hull mesh (stabflow.dynamics.pressure, decay off), "
+                         "same equations, 45 deg, 0.5 ptp over 100-160 s of a record from rest; the kernel with "
+                         "waterline='curved'", "independent", tolerance=TOL_PRESSURE))
     # --- GM in waves of the ship held at equilibrium: volume-based kernel vs surface-pressure
     # integration, first with the kernel's own planar waterline across each section (the same
     # loads by a different integration -> independent), then with the exact wave surface (what
     # the planar waterline costs; it drives parametric roll)
-    for which, label, tols in (
-        ("planar", "pressure integration with the sections' planar waterline",
+    for model, which, label, tols in (
+        ("volume", "planar", "pressure integration with the sections' planar waterline",
          (TOL_GM_PLANAR_MEAN, TOL_GM_PLANAR)),
-        ("exact", "pressure integration (exact wave surface)", (TOL_GM_EXACT, TOL_GM_EXACT)),
+        ("volume", "exact", "pressure integration (exact wave surface)", (TOL_GM_EXACT, TOL_GM_EXACT)),
+        ("curved", "exact", "pressure integration (exact wave surface), curved waterline", (TOL_GM_EXACT, TOL_GM_EXACT)),
     ):
         for j, (stat, tol) in enumerate(zip(("mean", "first-harmonic variation"), tols)):
-            row = _row(lambda which=which, j=j: 100 * (gm_waves()["volume"][j] / gm_waves()[which][j] - 1),
+            row = _row(lambda model=model, which=which, j=j: 100 * (gm_waves()[model][j] / gm_waves()[which][j] - 1),
                        f"GM in quartering waves lambda = L, H = T/3, ship held: {stat} vs {label}", "%",
                        "GM(t) = -dMx/dphi / (rho g V) at +-1 deg heel, 24 instants over a wave period, ship at its "
                        "calm-water equilibrium, 45 deg; surface-pressure integration on the hull mesh "
-                       f"(stabflow.dynamics.pressure, decay off, waterline={which!r})", "independent", tolerance=tol)
+                       f"(stabflow.dynamics.pressure, decay off, waterline={which!r}); the kernel with "
+                       f"waterline={'curved' if model == 'curved' else 'planar'!r}", "independent", tolerance=tol)
             if row.status != "SKIPPED" and np.isfinite(row.value):
                 g = gm_waves()
                 row.reference += "; " + ", ".join(
-                    f"{k} {g[k][0]:.4f} m + {g[k][1]:.4f} m at {g[k][2]:+.1f} deg" for k in ("volume", which))
+                    f"{k} {g[k][0]:.4f} m + {g[k][1]:.4f} m at {g[k][2]:+.1f} deg" for k in (model, which))
             rows.append(row)
     # --- small waves vs the linear frequency-domain solution of the same equations -> consistency.
     # With the kernel's own FK excitation both sides are the same equations; with the pressure-

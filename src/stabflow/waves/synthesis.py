@@ -117,12 +117,15 @@ def encounter_frequency(omega, speed: float, heading_deg: float):
 
 
 def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None,
-                       dtype=np.float64) -> np.ndarray:
-    """(nt, nst, nq) table of (eta, S[, dphi_zt]) at stations ``xs`` and equally spaced ``times``.
+                       dtype=np.float64, curvature: bool = False) -> np.ndarray:
+    """(nt, nst, nq) table of (eta, S[, dphi_zt[, eta_xixi]]) at stations ``xs`` and equally spaced
+    ``times``.
 
     S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
     ``depth`` (nst,) are the sections' calm-water mean depths [m] for the d2phi/dzdt term (nq = 3);
-    None leaves it out (nq = 2). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
+    None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
+    propagation eta_xixi [1/m] for the curved waterline across each section
+    (``waterline="curved"``, nq = 4; the dphi_zt column is then zero without ``depth``). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
     the table is one matrix product of the time factors (nt, 2 nc) with the station coefficients
     (2 nc, nst nq), in ``dtype`` (float32 halves the cost of long ensembles).
     """
@@ -142,6 +145,10 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
         kt = k[None, :] * np.maximum(np.asarray(depth, float)[:, None], 1e-9)
         smith = np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0)
         cols.append((-G * ak * smith * cP, -G * ak * smith * sP))
+    elif curvature:
+        cols.append((np.zeros_like(cP), np.zeros_like(sP)))
+    if curvature:
+        cols.append((-ak * k * cP, -ak * k * sP))  # eta_xixi = -sum a k^2 cos psi
     return _time_series_table(we, times, cols, dtype)
 
 
