@@ -12,7 +12,8 @@ from pathlib import Path
 import numpy as np
 
 from stabflow.config import Ship, load_ship
-from stabflow.dynamics import coefficients, simulate
+from stabflow.dynamics import simulate
+from stabflow.dynamics.model import config_coefficients
 from stabflow.dynamics.model import initial_state, parameters
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
 from stabflow.geometry import Sections, build_hull
@@ -42,7 +43,7 @@ def main():
         hull = build_hull(ship)
         st = compute_statics(ship, hull)
         sec = Sections(hull)
-        co = coefficients(ship, sec, st)
+        co = config_coefficients(ship, sec, st)  # the config constants (the ship file asks for Capytaine)
         simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 10.0, dt)  # JIT warm-up
         t0 = time.process_time()
         ds = simulate(sec, st, co, ship.rho, W, 45.0, 0.0, 1800.0, dt)
