@@ -94,36 +94,50 @@ def _ring_moments(c):
 
 
 def test_section_moments_against_shapely_clipping():
-    """_section_moments (area, first and second moments of the wet section and the waterline's span
-    across the hull) against shapely's clip of the full section polygon, DTMB 5415 stations, heeled
-    waterlines up to 60 deg."""
+    """_section_moments (area, first and second moments of the wet section and int s^k ds over the
+    waterline's wet chords) against shapely's clip of the full section polygon and its cut of the
+    line: DTMB 5415 stations and the trawler's stern stations, whose waterline crosses the hull four
+    times at large heel (the gap between the chords is left out), heel up to 57 deg."""
     from shapely.geometry import LineString, Polygon
     from shapely.geometry.polygon import orient
 
+    from stabflow.geometry import Sections
     from stabflow.geometry._kernels import _section_moments
 
-    from stabflow.geometry import Sections
-
-    sec = Sections(build_hull(load_ship(SHIPS / "dtmb5415.yaml")))
     rng = np.random.default_rng(5)
+    multi = 0
     checked = 0
-    for i in (10, 50, 90):
-        n = sec.n[i]
-        y, z = sec.y[i, :n], sec.z[i, :n]
-        full = Polygon(np.concatenate([np.column_stack([y, z]), np.column_stack([-y[::-1], z[::-1]])])).buffer(0)
-        for _ in range(5):
-            psi = rng.uniform(-1.0, 1.0)
-            a, b = np.sin(psi), np.cos(psi)
-            c = rng.uniform(0.3, 0.8) * z.max()
-            tdir, nvec = np.array([b, -a]), np.array([a, b])
-            base = c * nvec
-            half = Polygon([base + 1e3 * tdir, base - 1e3 * tdir, base - 1e3 * (tdir + nvec), base + 1e3 * (tdir - nvec)])
-            wet = orient(full.intersection(half), 1.0)
-            ref = _ring_moments(np.asarray(wet.exterior.coords))
-            got = _section_moments(y, z, n, a, b, c)
-            assert np.allclose(got[:6], ref, rtol=1e-9, atol=1e-9 * abs(ref[3])), (i, psi)
-            line = LineString([base + 1e3 * tdir, base - 1e3 * tdir]).intersection(full.boundary)
-            s = [b * p.x - a * p.y for p in getattr(line, "geoms", [line])]
-            assert got[6] == pytest.approx(min(s), abs=1e-9) and got[7] == pytest.approx(max(s), abs=1e-9)
-            checked += 1
-    assert checked == 15
+    for name, stations, heel in (("dtmb5415", (10, 50, 90), 1.0), ("trawler", (6, 9, 12), 1.0)):
+        sec = Sections(build_hull(load_ship(SHIPS / f"{name}.yaml")))
+        for i in stations:
+            n = sec.n[i]
+            y, z = sec.y[i, :n], sec.z[i, :n]
+            full = Polygon(np.concatenate([np.column_stack([y, z]), np.column_stack([-y[::-1], z[::-1]])])).buffer(0)
+            # random lines, and (trawler) low heeled ones through the deadwood and the bottom apart
+            lines = [(rng.uniform(-heel, heel), rng.uniform(0.2, 0.8)) for _ in range(8)]
+            if name == "trawler":
+                lines += [(0.35, 0.25), (0.35, 0.3), (0.4, 0.2), (-0.35, 0.25)]
+            for psi, f in lines:
+                a, b = np.sin(psi), np.cos(psi)
+                c = f * (abs(a) * y.max() + b * z.max())
+                tdir, nvec = np.array([b, -a]), np.array([a, b])
+                base = c * nvec
+                half = Polygon([base + 1e3 * tdir, base - 1e3 * tdir, base - 1e3 * (tdir + nvec),
+                                base + 1e3 * (tdir - nvec)])
+                wet = full.intersection(half)
+                pieces = [orient(g, 1.0) for g in getattr(wet, "geoms", [wet]) if g.geom_type == "Polygon" and g.area > 0]
+                if not pieces:
+                    continue
+                ref = sum(_ring_moments(np.asarray(g.exterior.coords)) for g in pieces)
+                got = _section_moments(y, z, n, a, b, c)
+                assert np.allclose(got[:6], ref, rtol=1e-9, atol=1e-9 * abs(ref[3])), (name, i, psi)
+                chords = LineString([base + 1e3 * tdir, base - 1e3 * tdir]).intersection(full)
+                parts = [g for g in getattr(chords, "geoms", [chords]) if g.length > 0]
+                multi += len(parts) > 1
+                J = np.zeros(4)
+                for g in parts:
+                    s0, s1 = sorted(b * p[0] - a * p[1] for p in g.coords)
+                    J += [(s1 ** (k + 1) - s0 ** (k + 1)) / (k + 1) for k in range(4)]
+                assert np.allclose(got[6:], J, rtol=1e-9, atol=1e-9 * max(1.0, abs(J).max())), (name, i, psi)
+                checked += 1
+    assert checked >= 40 and multi >= 1

@@ -59,18 +59,20 @@ def test_blas_limit_holds_while_any_thread_is_inside():
 
 
 def test_station_table_curvature_column_is_dS_dxi():
-    """curvature=True appends eta_xixi = dS/dxi (heading 0: xi = x), here against central
-    differences of S over +-1 mm, and a zero d2phi/dzdt column without depths."""
+    """curvature=True appends eta_xixi = dS/dxi, here against central differences of S along x
+    (d/dx = cos(beta) d/dxi, heading 30 deg) over +-1 mm, and a zero d2phi/dzdt column without
+    depths."""
     from stabflow.waves.synthesis import station_wave_table
 
     rng = np.random.default_rng(3)
     amp, w, ph = rng.uniform(0.1, 0.5, 12), rng.uniform(0.4, 1.6, 12), rng.uniform(-np.pi, np.pi, 12)
     xs = np.linspace(-40.0, 40.0, 9)
     t = np.arange(50) * 0.37
-    tab = station_wave_table(amp, w, ph, xs, 0.0, 3.0, t, curvature=True)
+    beta = 30.0
+    tab = station_wave_table(amp, w, ph, xs, beta, 3.0, t, curvature=True)
     assert tab.shape == (50, 9, 4) and np.all(tab[:, :, 2] == 0.0)
     h = 1e-3
-    sp = station_wave_table(amp, w, ph, xs + h, 0.0, 3.0, t)[:, :, 1]
-    sm = station_wave_table(amp, w, ph, xs - h, 0.0, 3.0, t)[:, :, 1]
-    assert np.allclose(tab[:, :, 3], (sp - sm) / (2 * h), rtol=1e-5, atol=1e-8)
-    assert np.allclose(tab[:, :, :2], station_wave_table(amp, w, ph, xs, 0.0, 3.0, t), rtol=1e-12, atol=1e-12)
+    sp = station_wave_table(amp, w, ph, xs + h, beta, 3.0, t)[:, :, 1]
+    sm = station_wave_table(amp, w, ph, xs - h, beta, 3.0, t)[:, :, 1]
+    assert np.allclose(np.cos(np.radians(beta)) * tab[:, :, 3], (sp - sm) / (2 * h), rtol=1e-5, atol=1e-8)
+    assert np.allclose(tab[:, :, :2], station_wave_table(amp, w, ph, xs, beta, 3.0, t), rtol=1e-12, atol=1e-12)

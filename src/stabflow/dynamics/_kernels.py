@@ -210,9 +210,11 @@ def _curved_sections(xs, dx, ys, zs, npts, xg, zg, h, ct, st, cp, sp, cb, sb, wa
     cross-beam curvature C2 (the next, cubic terms in the layer made the mean GM worse against
     pressure integration: trawler, beam seas lambda = L, -2.5 % with them, -0.03 % without):
 
-    * the thin layer between plane and surface over the waterline's span [Y1, Y2] across the hull
+    * the thin layer between plane and surface over the waterline's wet chords across the hull
       (its area int delta dY / cos(theta) and first moments, lying on the plane), added to the
-      section's area and first moments in ``work[:, 2:5]``;
+      section's area and first moments in ``work[:, 2:5]``; it is not clipped to the hull, so at
+      deck immersion and bottom emergence it switches on and off with the chord (kept from
+      emptying the section);
     * the horizontal pressure gradient's variation across the section (decay off,
       grad p = rho g grad eta): eta_y = sin(beta) S + C2 Y and eta_x = cos(beta) S + C_xy Y with
       C_xy = cos(beta) sin(beta) eta_xixi, integrated with the plane-clipped section's first and
@@ -242,19 +244,20 @@ def _curved_sections(xs, dx, ys, zs, npts, xg, zg, h, ct, st, cp, sp, cb, sb, wa
         a = ct * sp - ey * cp
         b = ct * cp + ey * sp
         c = eta + st * x - h
-        A, Sy, Sz, Iyy, Iyz, Izz, s1, s2 = _section_moments(ys[i], zs[i], npts[i], a, b, c)
+        A, Sy, Sz, Iyy, Iyz, Izz, j0, j1, j2, j3 = _section_moments(ys[i], zs[i], npts[i], a, b, c)
         dA = 0.0
         dSy = 0.0
         dSz = 0.0
-        if s2 > s1 and A > 0.0:
-            # points of the line: (y, z) = (c (a, b) + s (b, -a)) / n2, with Y = Y0 + (ct / n2) s
+        if j0 > 0.0 and A > 0.0:
+            # points of the line: (y, z) = (c (a, b) + s (b, -a)) / n2, with Y = Y0 + (ct / n2) s;
+            # J_k = int s^k ds over the wet chords
             n2 = a * a + b * b
             y0 = -c * ey / n2
             yr = ct / n2
-            y1 = y0 + yr * s1
-            y2 = y0 + yr * s2
-            d0 = c2 * (y2**3 - y1**3) / 6.0  # int delta dY
-            d1 = c2 * (y2**4 - y1**4) / 8.0  # int delta Y dY
+            iy2 = yr * (y0 * y0 * j0 + 2.0 * y0 * yr * j1 + yr * yr * j2)  # int Y^2 dY
+            iy3 = yr * (y0 * y0 * y0 * j0 + 3.0 * y0 * y0 * yr * j1 + 3.0 * y0 * yr * yr * j2 + yr * yr * yr * j3)
+            d0 = 0.5 * c2 * iy2  # int delta dY
+            d1 = 0.5 * c2 * iy3  # int delta Y dY
             # y and z on the line, linear in Y: s = (Y - Y0) / yr
             ly1 = b / (yr * n2)
             lz1 = -a / (yr * n2)
@@ -263,6 +266,13 @@ def _curved_sections(xs, dx, ys, zs, npts, xg, zg, h, ct, st, cp, sp, cb, sb, wa
             dA = d0 * ict
             dSy = (ly0 * d0 + ly1 * d1) * ict
             dSz = (lz0 * d0 + lz1 * d1) * ict
+            if A + dA < 0.0:
+                # the layer is not clipped to the hull: where it would empty the section (a flat
+                # bottom just wet), keep the area at zero
+                r = -A / dA
+                dA *= r
+                dSy *= r
+                dSz *= r
         work[i, 2] = A + dA
         work[i, 3] = Sy + dSy
         work[i, 4] = Sz + dSz

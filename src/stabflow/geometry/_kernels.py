@@ -23,14 +23,15 @@ from numba import njit
 @njit(cache=True, fastmath=False, inline="always")
 def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
     """Area, first and second moments of {a*y + b*z <= c} ∩ (half contour closed on the
-    centreline), and the span of the waterline across the hull.
+    centreline), and moments of the wet chords of the waterline.
 
-    Returns (area, int y dA, int z dA, int y^2 dA, int y z dA, int z^2 dA, s_min, s_max) [m^2,
-    m^3, m^3, m^4, m^4, m^4, m^2]: shoelace sums over the Sutherland-Hodgman output polygon,
-    accumulated on the fly (no allocation), and the extreme values of s = p*y + q*z over the points
-    where the line crosses the hull contour (not the centreline closing edge); s_min > s_max when
-    it crosses none. With ``full`` False only the area and first moments are formed (the rest stay
-    zero and the span empty): :func:`_clip_half`'s hot path.
+    Returns (area, int y dA, int z dA, int y^2 dA, int y z dA, int z^2 dA, J0, J1, J2, J3) [m^2,
+    m^3, m^3, m^4, m^4, m^4, m, m^2, m^3, m^4]: shoelace sums over the Sutherland-Hodgman output
+    polygon, accumulated on the fly (no allocation), and J_k = int s^k ds over the parts of the line
+    a*y + b*z = c inside the half section, s = p*y + q*z along it (the output polygon's edges
+    between two consecutive crossing points; with several chords, the gaps between them are left
+    out; signed so that J0 >= 0). With ``full`` False only the area and first moments are formed
+    (the rest stay zero): :func:`_clip_half`'s hot path.
     """
     area = 0.0
     sy = 0.0
@@ -38,13 +39,17 @@ def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
     iyy = 0.0
     iyz = 0.0
     izz = 0.0
-    smin = 1e300
-    smax = -1e300
+    j0 = 0.0
+    j1 = 0.0
+    j2 = 0.0
+    j3 = 0.0
     have = False
     fy = 0.0
     fz = 0.0
+    fx = False  # the first emitted point is a crossing
     py = 0.0
     pz = 0.0
+    px = False  # the previous emitted point is a crossing
     # edge k -> k+1, the last edge (n-1 -> 0) runs down the centreline
     y0 = ys[n - 1]
     z0 = zs[n - 1]
@@ -55,16 +60,14 @@ def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
         d1 = a * y1 + b * z1 - c
         for m in range(2):
             emit = False
+            cross = False
             if m == 0:
                 if (d0 <= 0.0) != (d1 <= 0.0):
                     t = d0 / (d0 - d1)
                     ey = y0 + t * (y1 - y0)
                     ez = z0 + t * (z1 - z0)
                     emit = True
-                    if full and k > 0:
-                        sv = p * ey + q * ez
-                        smin = min(smin, sv)
-                        smax = max(smax, sv)
+                    cross = True
             else:
                 if d1 <= 0.0:
                     ey = y1
@@ -80,12 +83,22 @@ def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
                         iyy += (py * py + py * ey + ey * ey) * cr
                         iyz += (py * ez + 2.0 * py * pz + 2.0 * ey * ez + ey * pz) * cr
                         izz += (pz * pz + pz * ez + ez * ez) * cr
+                        if cross and px:
+                            # an edge of the output polygon along the clip line: a wet chord
+                            s0 = p * py + q * pz
+                            s1 = p * ey + q * ez
+                            j0 += s1 - s0
+                            j1 += (s1 * s1 - s0 * s0) / 2.0
+                            j2 += (s1 * s1 * s1 - s0 * s0 * s0) / 3.0
+                            j3 += (s1 * s1 * s1 * s1 - s0 * s0 * s0 * s0) / 4.0
                 else:
                     fy = ey
                     fz = ez
+                    fx = cross
                     have = True
                 py = ey
                 pz = ez
+                px = cross
         y0 = y1
         z0 = z1
         d0 = d1
@@ -98,7 +111,19 @@ def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
             iyy += (py * py + py * fy + fy * fy) * cr
             iyz += (py * fz + 2.0 * py * pz + 2.0 * fy * fz + fy * pz) * cr
             izz += (pz * pz + pz * fz + fz * fz) * cr
-    return 0.5 * area, sy / 6.0, sz / 6.0, iyy / 12.0, iyz / 24.0, izz / 12.0, smin, smax
+            if px and fx:
+                s0 = p * py + q * pz
+                s1 = p * fy + q * fz
+                j0 += s1 - s0
+                j1 += (s1 * s1 - s0 * s0) / 2.0
+                j2 += (s1 * s1 * s1 - s0 * s0 * s0) / 3.0
+                j3 += (s1 * s1 * s1 * s1 - s0 * s0 * s0 * s0) / 4.0
+    if j0 < 0.0:
+        j0 = -j0
+        j1 = -j1
+        j2 = -j2
+        j3 = -j3
+    return 0.5 * area, sy / 6.0, sz / 6.0, iyy / 12.0, iyz / 24.0, izz / 12.0, j0, j1, j2, j3
 
 
 @njit(cache=True, fastmath=False, inline="always")
@@ -121,11 +146,12 @@ def _section(ys, zs, n, a, b, c):
 @njit(cache=True)
 def _section_moments(ys, zs, n, a, b, c):
     """Both halves of a symmetric section: (area, int y dA, int z dA, int y^2 dA, int y z dA,
-    int z^2 dA, s_min, s_max) with s = b*y - a*z along the waterline a*y + b*z = c over its
-    crossings of the hull contour (:func:`_clip_half_moments`)."""
+    int z^2 dA, J0, J1, J2, J3) with J_k = int s^k ds over the wet chords of the waterline
+    a*y + b*z = c, s = b*y - a*z along it (:func:`_clip_half_moments`; the two halves' chords meet
+    on the centreline)."""
     r1 = _clip_half_moments(ys, zs, n, a, b, c, b, -a, True)
     # starboard half in mirrored coordinates y' = -y: a -> -a; odd moments in y change sign, and
     # s = b y - a z = -b y' - a z
     r2 = _clip_half_moments(ys, zs, n, -a, b, c, -b, -a, True)
     return (r1[0] + r2[0], r1[1] - r2[1], r1[2] + r2[2], r1[3] + r2[3], r1[4] - r2[4], r1[5] + r2[5],
-            min(r1[6], r2[6]), max(r1[7], r2[7]))
+            r1[6] + r2[6], r1[7] + r2[7], r1[8] + r2[8], r1[9] + r2[9])

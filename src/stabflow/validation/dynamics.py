@@ -49,7 +49,7 @@ Volume-based vs pressure integration (6 rows, independent; tolerance 4 %)
     small-wave rows show the linear excitation +9 / +4 / +7 % off, about 1 / sinc(0.69) - 1 =
     +8.4 % in heave. Three more rows run the kernel with ``waterline="curved"`` against the same
     pressure records: barge +0.30 / -0.66 / +0.19 %, dtmb5415 +1.11 / +1.44 / +0.83 %, trawler
-    +2.74 / -5.22 / +1.44 % (roll 12.2 against 12.9 deg: FAIL, but the parametric roll is there).
+    +2.72 / -4.96 / +1.48 % (roll 12.2 against 12.9 deg: FAIL, but the parametric roll is there).
     SKIPPED for hulls without a mesh (analytic, offsets), meshes over
     10,000 triangles (the DTC's 116,062 cost about 50 ms per load evaluation, some 5 min per record;
     the reference runs on the box barge), and hulls whose topsides are replaced in the config
