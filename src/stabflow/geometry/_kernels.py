@@ -21,6 +21,24 @@ from numba import njit
 
 
 @njit(cache=True, fastmath=False, inline="always")
+def _edge_add(iyy, iyz, izz, j0, j1, j2, j3, ay, az, by, bz, cr, p, q, chord):
+    """Add one output edge (a -> b, shoelace cross product ``cr``) of :func:`_clip_half_moments`
+    to the running second-moment sums (x 12, 24, 12) and, for an edge along the clip line
+    (``chord``), to int s^k ds, k = 0..3, s = p*y + q*z; returns the seven sums."""
+    iyy += (ay * ay + ay * by + by * by) * cr
+    iyz += (ay * bz + 2.0 * ay * az + 2.0 * by * bz + by * az) * cr
+    izz += (az * az + az * bz + bz * bz) * cr
+    if chord:
+        s0 = p * ay + q * az
+        s1 = p * by + q * bz
+        j0 += s1 - s0
+        j1 += (s1 * s1 - s0 * s0) / 2.0
+        j2 += (s1 * s1 * s1 - s0 * s0 * s0) / 3.0
+        j3 += (s1 * s1 * s1 * s1 - s0 * s0 * s0 * s0) / 4.0
+    return iyy, iyz, izz, j0, j1, j2, j3
+
+
+@njit(cache=True, fastmath=False, inline="always")
 def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
     """Area, first and second moments of {a*y + b*z <= c} ∩ (half contour closed on the
     centreline), and moments of the wet chords of the waterline.
@@ -80,17 +98,9 @@ def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
                     sy += (py + ey) * cr
                     sz += (pz + ez) * cr
                     if full:
-                        iyy += (py * py + py * ey + ey * ey) * cr
-                        iyz += (py * ez + 2.0 * py * pz + 2.0 * ey * ez + ey * pz) * cr
-                        izz += (pz * pz + pz * ez + ez * ez) * cr
-                        if cross and px:
-                            # an edge of the output polygon along the clip line: a wet chord
-                            s0 = p * py + q * pz
-                            s1 = p * ey + q * ez
-                            j0 += s1 - s0
-                            j1 += (s1 * s1 - s0 * s0) / 2.0
-                            j2 += (s1 * s1 * s1 - s0 * s0 * s0) / 3.0
-                            j3 += (s1 * s1 * s1 * s1 - s0 * s0 * s0 * s0) / 4.0
+                        # an edge between two crossings lies on the clip line: a wet chord
+                        iyy, iyz, izz, j0, j1, j2, j3 = _edge_add(iyy, iyz, izz, j0, j1, j2, j3, py, pz, ey, ez, cr,
+                                                                  p, q, cross and px)
                 else:
                     fy = ey
                     fz = ez
@@ -108,16 +118,8 @@ def _clip_half_moments(ys, zs, n, a, b, c, p, q, full=True):
         sy += (py + fy) * cr
         sz += (pz + fz) * cr
         if full:
-            iyy += (py * py + py * fy + fy * fy) * cr
-            iyz += (py * fz + 2.0 * py * pz + 2.0 * fy * fz + fy * pz) * cr
-            izz += (pz * pz + pz * fz + fz * fz) * cr
-            if px and fx:
-                s0 = p * py + q * pz
-                s1 = p * fy + q * fz
-                j0 += s1 - s0
-                j1 += (s1 * s1 - s0 * s0) / 2.0
-                j2 += (s1 * s1 * s1 - s0 * s0 * s0) / 3.0
-                j3 += (s1 * s1 * s1 * s1 - s0 * s0 * s0 * s0) / 4.0
+            iyy, iyz, izz, j0, j1, j2, j3 = _edge_add(iyy, iyz, izz, j0, j1, j2, j3, py, pz, fy, fz, cr, p, q,
+                                                      px and fx)
     if j0 < 0.0:
         j0 = -j0
         j1 = -j1
