@@ -140,14 +140,17 @@ def test_station_wave_on_a_moving_line_table(trawler):
 
 
 # ------------------------------------------------------------------------- constrained case
-def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler):
+@pytest.mark.parametrize("waterline", ["planar", "curved"])
+def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler, waterline):
     """Surge, sway and yaw held, no foils, wave nodes at the stations: heave, roll and pitch equal
-    the 3-DOF kernel's to round-off (same loads, same rigid-body equations)."""
+    the 3-DOF kernel's to round-off (same loads, same rigid-body equations), with either waterline
+    (the curved one takes eta_xixi = dS/dxi from the line table)."""
     ship, sec, st, co, tabs, ab = trawler
     x = np.asarray(sec.x, float)
     assert np.allclose(np.diff(x), x[1] - x[0])
     beta = 40.0
-    model = build_six_dof(sec, st, co, ship.rho, beta, SPEED, Manoeuvring(added_mass=ab), tables=tabs)
+    model = build_six_dof(sec, st, co, ship.rho, beta, SPEED, Manoeuvring(added_mass=ab), tables=tabs,
+                          waterline=waterline)
     p6 = model.p.copy()
     p6[K.P_FREE:K.P_FREE + 6] = THREE_DOF
     dt, n = 0.05, 400
@@ -165,7 +168,8 @@ def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler):
     assert (last, status) == (n, K6.OK)
     p3 = parameters(co, ship.rho, float(st["lcg"]), float(st["kg"]), beta)
     out3 = np.empty((n + 1, K.N_STATE))
-    K._simulate(*kernel_args(sec, tabs), p3, station_wave_table(*comps, x, beta, SPEED, t), dt, 0, n,
+    K._simulate(*kernel_args(sec, tabs), p3, station_wave_table(*comps, x, beta, SPEED, t,
+                                                              curvature=waterline == "curved"), dt, 0, n,
                 s0[:K.N_STATE], np.radians(90.0), out3, np.empty((0, 6)))
     for j in (K.S_Z, K.S_ROLL, K.S_PITCH):
         scale = np.max(np.abs(out3[:, j] - out3[0, j])) + 1e-3

@@ -249,7 +249,8 @@ def test_lateral_acceleration_is_refused_for_six_dof():
 def test_curved_waterline_condition_runs_the_curved_kernel():
     """``waterline: curved``: the shard's records are the curved kernel's (the same record through
     stabflow.dynamics.simulate, float64 wave table against the ensemble's float32 one), they differ
-    from the planar ones, and the option is refused with dof 6 and the derivative model."""
+    from the planar ones, and the option is refused with the derivative model (dof 6 carries it:
+    tests/dynamics/test_manoeuvring.py)."""
     from stabflow import StabflowError
     from stabflow.dynamics import simulate
 
@@ -267,6 +268,14 @@ def test_curved_waterline_condition_runs_the_curved_kernel():
     roll_c = np.degrees(out_c[:, S_ROLL])
     assert np.abs(roll_c - ds["roll"].values).max() < 1e-4 * np.abs(roll_c).max()
     assert np.abs(roll_c - np.degrees(out_p[:, S_ROLL])).max() > 1e-2 * np.abs(roll_c).max()
-    for bad in ({"dof": 6}, {"model": "derivative"}):
-        with pytest.raises(StabflowError, match="waterline: curved"):
-            build_model(ship, dict(base, waterline="curved", **bad))
+    with pytest.raises(StabflowError, match="waterline: curved"):
+        build_model(ship, dict(base, waterline="curved", model="derivative"))
+    from stabflow.dynamics import _kernels_6dof as K6
+
+    from stabflow.geometry import build_hull
+    from stabflow.hydrostatics.statics import compute_statics
+
+    trawler = load_ship(SHIPS / "trawler.yaml")
+    rad = synthetic_memory_dataset(float(compute_statics(trawler, build_hull(trawler))["lcg"]))
+    six = {wl: build_model(trawler, dict(base, ship="trawler", dof=6, waterline=wl), None, rad) for wl in ("planar", "curved")}
+    assert six["curved"].six.m[K6.M_CURVED] == 1.0 and six["planar"].six.m[K6.M_CURVED] == 0.0

@@ -56,7 +56,8 @@ M_WRAP = 20        # > 0: the line table is periodic with this many intervals (o
 M_AB = 21          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, kg m, kg m^2]
 M_XI_RATE = 30     # the line table's points move along xi at this rate [m/s] (a table in the frame of the ship's drift)
 M_XI_TIME = 31     # time since the line table's first row [s] (set by the RK4 stage by stage)
-N_M = M_XI_TIME + 1
+M_CURVED = 32      # 1: the curved waterline across the sections (``_kernels._curved_sections``), 0: planar
+N_M = M_CURVED + 1
 # optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
 # :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then
 # the poles (re, im) and the residues (re, im) in (pole, i, j) order, then the forward-speed flag
@@ -119,7 +120,8 @@ def _hermite(y0, d0, y1, d1, t, h):
 
 @njit(cache=True)
 def _station_wave(xs, p, m, s, line, wave):
-    """Fill ``wave`` (nst, 2) with (eta, S) at the stations' instantaneous positions from the line
+    """Fill ``wave`` (nst, 2) with (eta, S), or (nst, 4) with (eta, S, 0, eta_xixi) for the curved
+    waterline (eta_xixi = dS/dxi linear between the table's points), at the stations' instantaneous positions from the line
     table ``line`` (npoints, 3) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
     m[M_XI_TIME] + k m[M_DXI] (a table on a grid moving with the ship's drift). Returns False if a station lies outside the table (its
     value is then taken at the nearest end); a periodic table (``M_WRAP`` intervals, one regular
@@ -154,6 +156,9 @@ def _station_wave(xs, p, m, s, line, wave):
         t = u - k
         wave[i, 0] = _hermite(line[k, 0], line[k, 1], line[k + 1, 0], line[k + 1, 1], t, h)
         wave[i, 1] = _hermite(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
+        if wave.shape[1] > 3:
+            wave[i, 2] = 0.0
+            wave[i, 3] = line[k, 2] + t * (line[k + 1, 2] - line[k, 2])
     return inside
 
 
@@ -623,7 +628,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
     r = np.empty(6)
     nst = xs.shape[0]
     work = np.empty((nst, 5))
-    wave = np.empty((nst, 2))
+    wave = np.empty((nst, 4 if m[M_CURVED] != 0.0 else 2))
     sub = np.empty_like(ltab[0])
     nf = foils.shape[0]
     modes = np.empty(nf + 2, np.int64)

@@ -61,11 +61,13 @@ def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg
 
 
 def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | None = None,
-                  tables: tuple[int, int] = (181, 101), radiation: xr.Dataset | None = None) -> SixDof:
+                  tables: tuple[int, int] = (181, 101), radiation: xr.Dataset | None = None,
+                  waterline: str = "planar") -> SixDof:
     """The ship (optionally loaded to ``kg`` [m]) ready for 6-DOF records at ``speed_kn`` [kn] in waves
     of ``heading_deg`` [degree] relative to the course (0 following), with its config coefficients
     and, if the ship asks for it, the heave-pitch radiation memory (from the ``radiation`` step's
-    dataset ``radiation``, or computed now: :func:`stabflow.dynamics.radiation.ship_memory`)."""
+    dataset ``radiation``, or computed now: :func:`stabflow.dynamics.radiation.ship_memory`);
+    ``waterline`` as :func:`stabflow.dynamics.simulate`."""
     from stabflow.dynamics.radiation import ship_memory
 
     s = ship.modified(kg=kg) if kg is not None else ship
@@ -74,7 +76,8 @@ def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | N
     sec = Sections(hull)
     co = coefficients(s, sec, st, None, speed=speed_kn * KNOT)
     return build_six_dof(sec, st, co, s.rho, heading_deg, speed_kn * KNOT, manoeuvring_from_ship(s, sec, st),
-                         tables=section_tables(sec, *tables), memory=ship_memory(ship, float(st["lcg"]), radiation))
+                         tables=section_tables(sec, *tables), memory=ship_memory(ship, float(st["lcg"]), radiation),
+                         waterline=waterline)
 
 
 def heavy_kg(ship: Ship, above_waterline: float) -> float:
@@ -116,7 +119,8 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Datase
     wave = np.full((len(cases), 3), np.nan)  # wave number, encounter frequency, phase (regular cases)
     bar = tqdm(total=len(loads) * len(cases), desc=f"{ship.name} paper 004 cases", disable=not progress)
     for i, (lname, kg) in enumerate(loads.items()):
-        model = six_dof_model(ship, float(cfg["heading_deg"]), float(cfg["speed_kn"]), kg, radiation=radiation)
+        model = six_dof_model(ship, float(cfg["heading_deg"]), float(cfg["speed_kn"]), kg, radiation=radiation,
+                              waterline=cfg.get("waterline", "planar"))
         kgs[i] = float(model.p[K.P_ZG])
         for j, (kind, lam, h) in enumerate(cases):
             if kind == "regular":

@@ -272,12 +272,18 @@ class SixDof:
 
 
 def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, heading_deg: float, speed: float,
-                  man: Manoeuvring, tables: SectionTables | None = None, memory=None) -> SixDof:
+                  man: Manoeuvring, tables: SectionTables | None = None, memory=None,
+                  waterline: str = "planar") -> SixDof:
     """Assemble the 6-DOF kernel inputs for a ship (sections, statics, 3-DOF coefficients ``co``),
     water density ``rho`` [kg/m^3], wave heading [degree] relative to the course, commanded
     ``speed`` [m/s] and the manoeuvring description ``man``. With ``memory``
     (:class:`stabflow.dynamics.radiation.Memory`) heave and pitch radiate through it: their added mass
-    is its A(inf) and their constant damping is replaced by its states (Cummins' equation)."""
+    is its A(inf) and their constant damping is replaced by its states (Cummins' equation).
+    ``waterline`` as :func:`stabflow.dynamics.simulate` (``"curved"``: exact clipping of the
+    sections, the tables unused in the waves)."""
+    from stabflow.dynamics.model import _check_waterline
+
+    curved = _check_waterline(waterline)
     lcg, kg = float(st["lcg"]), float(st["kg"])
     sp = section_parameters(sec, st)
     hp = particulars(sp)
@@ -295,6 +301,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     p = parameters(co, rho, lcg, kg, heading_deg, free=SIX_DOF)
     rest = initial_state(sec, st)
     m = np.zeros(K6.N_M)
+    m[K6.M_CURVED] = 1.0 if curved else 0.0
     if memory is not None:
         from stabflow.dynamics.radiation import memory_parameters, transom
 

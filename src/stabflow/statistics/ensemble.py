@@ -88,12 +88,11 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
     coefficients (Capytaine ``hydro`` if the ship uses it) and the sectional tables; 6-DOF
     conditions of a ship with ``manoeuvring.heave_pitch_radiation: memory`` take its memory model
     from the ``radiation`` step's dataset ``radiation`` (computed now if None)."""
-    if cond.get("waterline", "planar") == "curved" and (int(cond.get("dof", 3)) == 6
-                                                        or cond.get("model", "volume") == "derivative"):
+    if cond.get("waterline", "planar") == "curved" and cond.get("model", "volume") == "derivative":
         from stabflow import StabflowError
 
-        raise StabflowError(f"config: ensembles: {cond.get('name', '?')}: waterline: curved is a term of the 3-DOF "
-                            "volume-based kernel; it cannot run with dof: 6 or model: derivative")
+        raise StabflowError(f"config: ensembles: {cond.get('name', '?')}: waterline: curved is a term of the "
+                            "volume-based kernel; the derivative model's fit does not carry it")
     s = ship.modified(stations=cond["stations"], kg=cond.get("kg"), dynamics=cond.get("dynamics", {}))
     hull = build_hull(s)
     st = compute_statics(s, hull)
@@ -117,7 +116,8 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
 
         six = build_six_dof(sec, st, co, s.rho, float(cond["heading_deg"]), float(cond["speed_kn"]) * KNOT,
                             manoeuvring_from_ship(s, sec, st), tables=tables,
-                            memory=ship_memory(ship, float(st["lcg"]), radiation))
+                            memory=ship_memory(ship, float(st["lcg"]), radiation),
+                            waterline=cond.get("waterline", "planar"))
     sea = Seaway.from_config(cond["sea"]) if "sea" in cond else None  # regular-wave studies have none
     model = Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth, co.natural_period("roll"), six, co=co)
     if cond.get("model", "volume") == "derivative":
