@@ -118,10 +118,18 @@ def _hermite(y0, d0, y1, d1, t, h):
             + (-2.0 * t3 + 3.0 * t2) * y1 + (t3 - t2) * h * d1)
 
 
+@njit(cache=True, inline="always")
+def _hermite_slope(y0, d0, y1, d1, t, h):
+    """Derivative per unit length of :func:`_hermite`'s interpolant at t."""
+    t2 = t * t
+    return (6.0 * t2 - 6.0 * t) * (y0 - y1) / h + (3.0 * t2 - 4.0 * t + 1.0) * d0 + (3.0 * t2 - 2.0 * t) * d1
+
+
 @njit(cache=True)
 def _station_wave(xs, p, m, s, line, wave):
     """Fill ``wave`` (nst, 2) with (eta, S), or (nst, 4) with (eta, S, 0, eta_xixi) for the curved
-    waterline (eta_xixi = dS/dxi linear between the table's points), at the stations' instantaneous positions from the line
+    waterline (eta_xixi = dS/dxi, the slope of S's Hermite interpolant: 0.4 % at 8 points per
+    wavelength where a linear one of the tabulated dS/dxi is 7.6 % low), at the stations' instantaneous positions from the line
     table ``line`` (npoints, 3) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
     m[M_XI_TIME] + k m[M_DXI] (a table on a grid moving with the ship's drift). Returns False if a station lies outside the table (its
     value is then taken at the nearest end); a periodic table (``M_WRAP`` intervals, one regular
@@ -158,7 +166,7 @@ def _station_wave(xs, p, m, s, line, wave):
         wave[i, 1] = _hermite(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
         if wave.shape[1] > 3:
             wave[i, 2] = 0.0
-            wave[i, 3] = line[k, 2] + t * (line[k + 1, 2] - line[k, 2])
+            wave[i, 3] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
     return inside
 
 

@@ -163,6 +163,7 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Datase
     for k in ev_names:
         out[k] = (("loading", "case"), ev[k].astype(int) if k in ("capsized", "broach", "surf_riding") else ev[k])
     out.attrs.update(ship=ship.name, speed_kn=float(cfg["speed_kn"]), heading_deg=float(cfg["heading_deg"]), dt=dt,
+                     waterline=cfg.get("waterline", "planar"),
                      lcg=float(model.p[K.P_XG]),
                      reference="Lin, Meinhold & Salvesen (1998), USCG CG-D-17-98, Tables 3-4, Figs 7-14",
                      note="NaN after a record's end (capsize): see end_time")
@@ -407,7 +408,8 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
     mc = cfg["map"]
     lspec = cfg["loadings"][mc["loading"]]
     kg = heavy_kg(ship, float(lspec["kg_above_waterline"])) if "kg_above_waterline" in lspec else lspec.get("kg")
-    base = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), kg, radiation=radiation)
+    base = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), kg, radiation=radiation,
+                         waterline=cfg.get("waterline", "planar"))
     sea = Seaway(kind=mc["sea"]["spectrum"], hs=float(mc["sea"]["hs"]), tp=mc["sea"].get("tp"),
                  n_components=int(mc["sea"].get("n_components", 220)))
     heads, speeds = np.asarray(mc["headings_deg"], float), np.asarray(mc["speeds_kn"], float)

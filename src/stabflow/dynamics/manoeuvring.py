@@ -584,7 +584,8 @@ def _linear_system(model: SixDof, eps: float = 1e-6):
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = 0.0, 1.0, 1.0
     nst = len(model.sec.x)
     # the foils' lift branches from their angles of attack (-1), as the kernel's modes at a step's start
-    scratch = (np.zeros(6), np.zeros((nst, 2)), np.zeros((nst, 5)), np.zeros((6, 6)), np.zeros(6),
+    scratch = (np.zeros(6), np.zeros((nst, 4 if m[K6.M_CURVED] != 0.0 else 2)), np.zeros((nst, 5)), np.zeros((6, 6)),
+               np.zeros(6),
                np.full(len(model.foils) + 2, -1, np.int64))
 
     idx = model.continuous_index()
