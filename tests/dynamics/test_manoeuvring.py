@@ -536,6 +536,30 @@ def test_trawler_hull_derivatives_from_its_profile_make_it_course_stable(trawler
     assert all(0.0 < o < 10.0 for o in over["slender_body"]), over
 
 
+def test_trawler_slender_body_derivatives_do_not_depend_on_the_station_count():
+    """The ship's own stations put the trailing edge on a slab face, which moves with their count
+    (x_T -8.88 m at 81 stations): the derivatives of the ship's profile cut at PROFILE_STATIONS
+    are those of the hull, the same (dimensional, per rho and unit speed) at 41 and 81 stations
+    within 0.1 %, and x_T within 1 mm of the 1281-station profile's -8.926 m (measured)."""
+    from stabflow.dynamics.broaching import profile_derivative_sets
+    from stabflow.dynamics.manoeuvring import LINEAR_DERIVATIVES
+    from stabflow.geometry import build_hull
+    from stabflow.hydrostatics.statics import compute_statics
+
+    ship, _, _, _ = ship_model("trawler")
+    power = {"yv": 2, "yr": 3, "nv": 3, "nr": 4}
+    dim = {}
+    for n in (41, 81):
+        s = ship.modified(stations=n)
+        st = compute_statics(s, build_hull(s))
+        d = profile_derivative_sets(s, st)["slender_body"]
+        L = float(st["lwl"])
+        dim[n] = {k: d[k] * 0.5 * L ** power[k] for k in LINEAR_DERIVATIVES}
+        assert d["x_trailing"] == pytest.approx(-8.926, abs=0.01)
+    for k in LINEAR_DERIVATIVES:
+        assert dim[41][k] == pytest.approx(dim[81][k], rel=1e-3), k
+
+
 def test_unknown_hull_derivatives_are_an_error(trawler):
     with pytest.raises(StabflowError, match="hull derivatives 'lamp'"):
         six_dof(trawler, hull="lamp")

@@ -18,8 +18,9 @@ from stabflow.config import Ship
 from stabflow.constants import G, KNOT
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics.manoeuvres import record_events
-from stabflow.dynamics.manoeuvring import (Autopilot, Foil, Manoeuvring, SixDof, build_six_dof, first_harmonic,
-                                           linear_regular_response, linearised_course_change, simulate_six_dof)
+from stabflow.dynamics.manoeuvring import (LINEAR_DERIVATIVES, Autopilot, Foil, Manoeuvring, SixDof, build_six_dof,
+                                           first_harmonic, hull_derivative_sets, linear_regular_response,
+                                           linearised_course_change, simulate_six_dof)
 from stabflow.dynamics.model import coefficients
 from stabflow.dynamics.roll_damping import particulars, section_parameters
 from stabflow.dynamics.tables import section_tables
@@ -29,6 +30,24 @@ from stabflow.io import annotate
 from stabflow.waves.seaway import Seaway
 
 MOTIONS = ("surge", "sway", "heave", "roll", "pitch", "yaw", "rudder")
+
+#: stations of the lateral profile on which the hull derivatives are computed, whatever the ship's
+#: own count (the larger of the two). The slender-body trailing edge is the aft face of a station's
+#: slab, so on the ship's stations it moves by up to a slab as their count changes (trawler:
+#: x_T -8.88 m at 81 stations, -8.93 m at 321; Y'r, N'r 0.8 % apart), and a 6-DOF record with
+#: them did not converge with the count (roll and yaw over 30 s in the benchmark's sea, 81 and
+#: 161 stations 2.7-7.8 % from 641; with the derivatives of 641 stations 0.1-0.4 %). At 321 the
+#: derivatives are within 0.03 % of 1281 stations' (trawler, DTC).
+PROFILE_STATIONS = 321
+
+
+def profile_derivative_sets(ship: Ship, st: xr.Dataset) -> dict:
+    """Both hull derivative sets (:func:`stabflow.dynamics.manoeuvring.hull_derivative_sets`) of
+    the ship's lateral profile cut at :data:`PROFILE_STATIONS` stations, at the loading of the
+    statics ``st``."""
+    n = max(PROFILE_STATIONS, int(ship.hull["stations"]))
+    fine = Sections(build_hull(ship if n == int(ship.hull["stations"]) else ship.modified(stations=n)))
+    return hull_derivative_sets(section_parameters(fine, st))
 
 
 def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg: float = 0.0) -> Manoeuvring:
@@ -54,10 +73,15 @@ def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg
     else:
         added = np.array([[am["a11"], 0.0, 0.0], [0.0, am["a22"], am["a26"]], [0.0, am["a26"], am["a66"]]])
     der = {k: v for k, v in cfg.get("derivatives", {}).items() if k != "source"}
-    return Manoeuvring(foils=foils, autopilot=autopilot, derivatives=der, hull=cfg.get("hull_derivatives", "clarke"),
+    hull = cfg.get("hull_derivatives", "clarke")
+    # the slender-body set needs the profile finely cut (PROFILE_STATIONS); Clarke's regression
+    # reads whole-hull particulars only, and values given for all four need neither
+    sets = profile_derivative_sets(ship, st) if hull == "slender_body" and not set(LINEAR_DERIVATIVES) <= set(der) \
+        else None
+    return Manoeuvring(foils=foils, autopilot=autopilot, derivatives=der, hull=hull,
                        form_factor=cfg.get("form_factor", 0.0),
                        side_force_height=cfg.get("side_force_height"), added_mass=added,
-                       radiation_forward_speed=cfg.get("radiation_forward_speed", False))
+                       radiation_forward_speed=cfg.get("radiation_forward_speed", False), hull_sets=sets)
 
 
 def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | None = None,
@@ -203,8 +227,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
             out[f"turning_{int(helm)}_{k}"] = v
         tracks[f"turning circle, rudder {helm:g}°"] = trajectory(ds)
     from stabflow.dynamics import _kernels_6dof as K6
-    from stabflow.dynamics.manoeuvring import (LINEAR_DERIVATIVES, hull_derivative_sets, sway_yaw_eigenvalues,
-                                               with_hull_derivatives)
+    from stabflow.dynamics.manoeuvring import sway_yaw_eigenvalues, with_hull_derivatives
 
     rudder = bool(np.any(model.foils[:, K6.F_RUDDER] != 0.0)) if len(model.foils) else False
     no_rudder = "the ship's manoeuvring section has no rudder foil: the autopilot cannot steer"
@@ -217,8 +240,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
     for k in LINEAR_DERIVATIVES:
         out[f"derivative_{k}"] = float(model.derivatives[k])
     # both sources of hull derivatives side by side (the report's table), each with its eigenvalue
-    sp = section_parameters(model.sec, _statics(ship))
-    for name, der in hull_derivative_sets(sp).items():
+    for name, der in profile_derivative_sets(ship, _statics(ship)).items():
         if isinstance(der, str):
             out[f"{name}_unavailable"] = der
             continue

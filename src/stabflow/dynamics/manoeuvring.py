@@ -243,6 +243,10 @@ class Manoeuvring:
     #: (``_kernels_6dof._memory``; False, the default: the zero-speed coefficients alone, consistent
     #: with an excitation of Froude-Krylov forces without diffraction; see :mod:`.radiation`)
     radiation_forward_speed: bool = False
+    #: the hull derivative sets (:func:`hull_derivative_sets`) of a finer lateral profile than the
+    #: model's stations (:func:`stabflow.dynamics.broaching.profile_derivative_sets`); None: from
+    #: the model's own stations
+    hull_sets: dict | None = None
 
 
 @dataclass(frozen=True)
@@ -290,7 +294,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     L, B, T = hp.length, hp.breadth, hp.draft
     if man.hull not in HULL_DERIVATIVES:
         raise StabflowError(f"manoeuvring: hull derivatives {man.hull!r} are not one of {list(HULL_DERIVATIVES)}")
-    sets = hull_derivative_sets(sp)
+    sets = man.hull_sets if man.hull_sets is not None else hull_derivative_sets(sp)
     der = sets[man.hull]
     if isinstance(der, str):
         if not set(LINEAR_DERIVATIVES) <= set(man.derivatives):
