@@ -240,7 +240,8 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
     for k in LINEAR_DERIVATIVES:
         out[f"derivative_{k}"] = float(model.derivatives[k])
     # both sources of hull derivatives side by side (the report's table), each with its eigenvalue
-    for name, der in profile_derivative_sets(ship, _statics(ship)).items():
+    statics = _statics(ship)
+    for name, der in profile_derivative_sets(ship, statics).items():
         if isinstance(der, str):
             out[f"{name}_unavailable"] = der
             continue
@@ -379,7 +380,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
     ds["surf_riding_melnikov_wave_force"] = ("surf_case", thr[:, 3])
     ds.attrs.update(manoeuvre_length=L, manoeuvre_speed=model.speed,
                     hull_derivatives=str(ship.data.get("manoeuvring", {}).get("hull_derivatives", "clarke")),
-                    manoeuvre_breadth=float(particulars(sp).breadth))
+                    manoeuvre_breadth=float(particulars(section_parameters(model.sec, statics)).breadth))
     return ds, rows, tracks, zigzags
 
 
