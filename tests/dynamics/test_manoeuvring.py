@@ -69,8 +69,11 @@ def test_line_table_derivatives_match_finite_differences():
 
 def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
     """Hermite interpolation in the line table at 8 points per shortest wavelength: eta and S at
-    displaced, yawed stations within 0.2 % of the largest value, eta_xixi within 1 % (direct sum
-    over components)."""
+    displaced, yawed, rolled and pitched stations within 0.2 % of the largest value, eta_xixi within
+    1 % (direct sum over components at the body points (x_i, 0, 0) placed by the rotation matrix);
+    with ``M_KEEL_LINE`` 0 at the 3-DOF placement, on G's axis."""
+    from scipy.spatial.transform import Rotation
+
     model = six_dof(trawler, heading=30.0)
     rng = np.random.default_rng(5)
     amp, w, ph = rng.uniform(0.1, 0.5, 20), np.linspace(0.6, 2.2, 20), rng.uniform(-np.pi, np.pi, 20)
@@ -79,12 +82,21 @@ def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
     m[K6.M_XI0], m[K6.M_DXI] = xi0, h
     s = model.s0.copy()
     s[K.S_X], s[K.S_Y], s[K.S_YAW] = 7.3, -4.1, np.radians(25.0)
-    wave = np.empty((len(model.sec.x), 4))  # with the curved waterline's eta_xixi
-    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], wave)
-    xg = model.p[K.P_XG]
+    s[K.S_ROLL], s[K.S_PITCH] = np.radians(35.0), np.radians(-6.0)
+    xg, zg = model.p[K.P_XG], model.p[K.P_ZG]
     d = model.sec.x - xg
-    X = s[K.S_X] + xg + np.cos(s[K.S_YAW]) * d
-    Y = s[K.S_Y] + np.sin(s[K.S_YAW]) * d
+    R = Rotation.from_euler("ZYX", [s[K.S_YAW], s[K.S_PITCH], s[K.S_ROLL]]).as_matrix()
+    keel = np.array([s[K.S_X] + xg, s[K.S_Y], 0.0]) + (R @ np.stack([d, 0 * d, np.full_like(d, -zg)])).T
+    axis = np.stack([s[K.S_X] + xg + np.cos(s[K.S_YAW]) * d, s[K.S_Y] + np.sin(s[K.S_YAW]) * d], axis=1)
+    assert np.max(np.abs(keel[:, 1] - axis[:, 1])) > 1.5  # the keel line lies 1.99 m to the side here
+    for flag, (X, Y) in ((1.0, keel[:, :2].T), (0.0, axis.T)):
+        m[K6.M_KEEL_LINE] = flag
+        wave = np.empty((len(model.sec.x), 4))  # with the curved waterline's eta_xixi
+        assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], wave)
+        _check_station_wave(wave, X, Y, amp, w, ph)
+
+
+def _check_station_wave(wave, X, Y, amp, w, ph):
     b = np.radians(30.0)
     k = w**2 / G
     psi = k * (X * np.cos(b) + Y * np.sin(b))[:, None] - (w - k * SPEED * np.cos(b)) * 0.75 + ph  # ltab[3]: t = 3 dt / 2
@@ -131,6 +143,7 @@ def test_station_wave_on_a_moving_line_table(trawler):
     assert wrap == 0
     m = model.m.copy()
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_XI_RATE], m[K6.M_XI_TIME] = xi0, h, c, t1
+    m[K6.M_KEEL_LINE] = 0.0  # the stations on G's axis (the keel line's placement: the test above)
     s = model.s0.copy()
     s[K.S_X] = c * t1 / np.cos(b)  # drifted along x by c t1 in xi
     wave = np.empty((len(model.sec.x), 2))
@@ -147,9 +160,10 @@ def test_station_wave_on_a_moving_line_table(trawler):
 # ------------------------------------------------------------------------- constrained case
 @pytest.mark.parametrize("waterline", ["planar", "curved"])
 def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler, waterline):
-    """Surge, sway and yaw held, no foils, wave nodes at the stations: heave, roll and pitch equal
-    the 3-DOF kernel's to round-off (same loads, same rigid-body equations), with either waterline
-    (the curved one takes eta_xixi = dS/dxi from the line table)."""
+    """Surge, sway and yaw held, no foils, wave nodes at the stations, the stations placed as the
+    3-DOF model's (``M_KEEL_LINE`` 0: on G's axis): heave, roll and pitch equal the 3-DOF kernel's
+    to round-off (same loads, same rigid-body equations), with either waterline (the curved one
+    takes eta_xixi = dS/dxi from the line table)."""
     ship, sec, st, co, tabs, ab = trawler
     x = np.asarray(sec.x, float)
     assert np.allclose(np.diff(x), x[1] - x[0])
@@ -164,7 +178,8 @@ def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler, waterline):
     cb = np.cos(np.radians(beta))
     ltab = line_wave_table(*comps, x * cb, beta, SPEED, t)
     m = model.m.copy()
-    m[K6.M_XI0], m[K6.M_DXI] = x[0] * cb, (x[1] - x[0]) * cb
+    assert m[K6.M_KEEL_LINE] == 1.0
+    m[K6.M_XI0], m[K6.M_DXI], m[K6.M_KEEL_LINE] = x[0] * cb, (x[1] - x[0]) * cb, 0.0
     s0 = model.s0.copy()
     s0[K.S_RATE + K.S_ROLL] = 0.05
     out6 = np.empty((n + 1, K6.N_STATE6))

@@ -57,7 +57,9 @@ M_AB = 21          # 3 x 3 added mass of (u, v, r) in body axes, row-major [kg, 
 M_XI_RATE = 30     # the line table's points move along xi at this rate [m/s] (a table in the frame of the ship's drift)
 M_XI_TIME = 31     # time since the line table's first row [s] (set by the RK4 stage by stage)
 M_CURVED = 32      # 1: the curved waterline across the sections (``_kernels._curved_sections``), 0: planar
-N_M = M_CURVED + 1
+M_KEEL_LINE = 33   # 1: the stations where the rolled, pitched and yawed hull puts them (``_station_wave``);
+#                    0: the 3-DOF model's placement, on G's axis (the constrained-case comparison)
+N_M = M_KEEL_LINE + 1
 # optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
 # :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then
 # the poles (re, im) and the residues (re, im) in (pole, i, j) order, then the forward-speed flag
@@ -133,23 +135,41 @@ def _station_wave(xs, p, m, s, line, wave):
     table ``line`` (npoints, 3) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
     m[M_XI_TIME] + k m[M_DXI] (a table on a grid moving with the ship's drift). Returns False if a station lies outside the table (its
     value is then taken at the nearest end); a periodic table (``M_WRAP`` intervals, one regular
-    wave, last point = first) is read modulo its period and never left."""
+    wave, last point = first) is read modulo its period and never left.
+
+    Where a station is (``M_KEEL_LINE`` 1): the sections' waterline planes are referred to the body
+    origin, so station i is the point (x_i, 0, 0) of the body axes, at G + R (x_i - x_G, 0, -z_G)
+    with R = Rz(psi) Ry(theta) Rx(phi): the keel line lies z_G sin(phi) to the side of G's vertical
+    and z_G sin(theta) cos(phi) along it (1.7 m at 30 degree of roll for the trawler's KG 3.47 m).
+    ``M_KEEL_LINE`` 0 puts the stations on G's axis turned by the yaw, where the 3-DOF model's
+    fixed stations are (paper 000 section 3: the body origin held, its horizontal shift with the
+    rotations left out), for the constrained-case comparison."""
     xg = p[P_XG]
     cb = p[P_COS_BETA]
     sb = p[P_SIN_BETA]
-    # stations on the ship's axis turned by the yaw about G; like the 3-DOF model (paper 000
-    # section 3) the horizontal shift of a section by pitch (second order) is left out
     cy = math.cos(s[S_YAW])
     sy = math.sin(s[S_YAW])
     x0 = s[S_X] + xg
     y0 = s[S_Y]
+    # station - G before the yaw: (ct d + ox, oy) with d = x_i - x_G
+    ct = 1.0
+    ox = 0.0
+    oy = 0.0
+    if m[M_KEEL_LINE] != 0.0:
+        zg = p[P_ZG]
+        cp = math.cos(s[S_ROLL])
+        ct = math.cos(s[S_PITCH])
+        ox = -zg * math.sin(s[S_PITCH]) * cp
+        oy = zg * math.sin(s[S_ROLL])
+    x0 += -sy * oy
+    y0 += cy * oy
     xi0 = m[M_XI0] + m[M_XI_RATE] * m[M_XI_TIME]
     h = m[M_DXI]
     npt = line.shape[0]
     wrap = m[M_WRAP]
     inside = True
     for i in range(xs.shape[0]):
-        d = xs[i] - xg
+        d = ct * (xs[i] - xg) + ox
         xi = (x0 + cy * d) * cb + (y0 + sy * d) * sb
         u = (xi - xi0) / h
         if wrap > 0.0:

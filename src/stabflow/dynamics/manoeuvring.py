@@ -306,6 +306,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     rest = initial_state(sec, st)
     m = np.zeros(K6.N_M)
     m[K6.M_CURVED] = 1.0 if curved else 0.0
+    m[K6.M_KEEL_LINE] = 1.0
     if memory is not None:
         from stabflow.dynamics.radiation import memory_parameters, transom
 
