@@ -284,7 +284,10 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     (:class:`stabflow.dynamics.radiation.Memory`) heave and pitch radiate through it: their added mass
     is its A(inf) and their constant damping is replaced by its states (Cummins' equation).
     ``waterline`` as :func:`stabflow.dynamics.simulate` (``"curved"``: exact clipping of the
-    sections, the tables unused in the waves)."""
+    sections, the tables unused in the waves). The hull derivatives are ``man.hull_sets``'s (the
+    finely cut profile of :func:`stabflow.dynamics.broaching.manoeuvring_from_ship`); without
+    them, those of ``sec``'s own stations, whose slender-body trailing edge moves with the station
+    count (a slab's aft face)."""
     from stabflow.dynamics.model import _check_waterline
 
     curved = _check_waterline(waterline)
