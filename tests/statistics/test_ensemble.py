@@ -147,7 +147,13 @@ def test_six_dof_condition_records_regenerate_and_run_splittime():
     k = min(200, last - n0 - 1)
     again, _, _ = run_six_dof(model.six, comps, k * model.dt, model.dt, s0=sc, t0=tc)
     roll = np.degrees(states[n0 + 1: n0 + 1 + k + 1, S_ROLL])
-    assert np.max(np.abs(np.degrees(again[:, S_ROLL]) - roll)) < 1e-3  # float32 tables on other chunks: 3e-5 seen
+    # the restart tabulates the wave on other chunks, in float32: it may part from the record by as
+    # much as the record parts from itself with float64 tables (3e-5 deg seen before the stations
+    # sat on the keel line, 1.3e-3 since, in this chaotic record), and by nothing like a wrong time
+    exact, _, _ = run_six_dof(model.six, comps, k * model.dt, model.dt, s0=sc, t0=tc, dtype=np.float64)
+    noise = np.max(np.abs(np.degrees(exact[:, S_ROLL]) - roll))
+    err = np.max(np.abs(np.degrees(again[:, S_ROLL]) - roll))
+    assert err < max(1e-3, 3.0 * noise), (err, noise)
     wrong, _, _ = run_six_dof(model.six, comps, k * model.dt, model.dt, s0=sc, t0=tc + 1.0)
     assert np.max(np.abs(np.degrees(wrong[:, S_ROLL]) - roll)) > 0.5
     # split-time on the 6-DOF ensemble: every crossing gets a bracket or a critical perturbation
