@@ -103,3 +103,35 @@ def test_melnikov_with_the_wave_force_is_lower():
     assert melnikov_threshold(model, 85.3, 1.8, wave_force=True) < 0.99 * plain
     with pytest.raises(ValueError, match="surf-riding at any commanded speed"):
         melnikov_threshold(model, 42.7, 1.8, wave_force=True)
+
+
+def test_six_dof_loads_in_a_following_wave_match_pressure_integration():
+    """The 6-DOF kernel's FK + HS loads on the surging, heaving and pitching trawler in a regular
+    following wave (lambda 85.3 m, H 1.8 m, 2 m/s: periodic surging, 4.6 degree of pitch; this
+    fixture's constant heave-pitch damping surf-rides in lambda 42.7 m at every speed) against
+    surface-pressure integration on the hull mesh at the same poses (exact surface, decay off), over
+    4 encounter periods of the motion: the mean surge force, the second-order force that sets the
+    surf-riding threshold, within 2 % (measured +0.37 %); the first harmonics of surge force, heave
+    force and pitch moment within 4 % (-0.01 / +0.21 / +0.19 %). The pipeline's rows run the same
+    comparison with the radiation memory in lambda 42.7 m, where the stations read on the keel line
+    (z = 0) with the station's slope for the surge force, as before 2026-12-04, gave a mean surge
+    force +12.6 %, a heave force first harmonic +25 % and a pitch moment first harmonic +19.5 % off
+    (2 m/s, 8 degree of pitch)."""
+    from stabflow.config import load_ship
+    from stabflow.dynamics.surf_riding import following_wave_loads
+    from stabflow.validation.dynamics import pressure_mesh
+
+    from ..conftest import SHIPS
+
+    model = _trawler()
+    v, f = pressure_mesh(load_ship(SHIPS / "trawler.yaml"))
+    lam = 85.3
+    r = following_wave_loads(model, v, f, lam, 1.8, 2.0)
+    assert r["pitch_deg"] > 4.0  # the tilt of the sections matters here
+    c = np.sqrt(G * lam / (2 * np.pi))
+    assert r["encounter_frequency"] < 2 * np.pi / lam * (c - 2.0)  # surging slows the waves' passage
+    assert r["kernel_fx_mean"] == pytest.approx(r["pressure_fx_mean"], rel=0.02)
+    for q in ("fx", "fz", "my"):
+        assert r[f"kernel_{q}_h1"] == pytest.approx(r[f"pressure_{q}_h1"], rel=0.04), q
+    with pytest.raises(ValueError, match="not surging periodically"):
+        following_wave_loads(model, v, f, 42.7, 1.8, 2.0)  # captured: surf-riding

@@ -368,6 +368,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
             else:
                 rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
                                          "-", ref, kind="consistency", tolerance=0.05))
+    rows.extend(_following_wave_load_rows(ship, model, lams, h, thr[:, 0], out))
     if model.memory is not None:
         rows.extend(radiation_checks(bem_from_dataset(radiation), model.memory))
         out["memory_poles"] = float(len(model.memory.poles))
@@ -383,6 +384,63 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
                     hull_derivatives=str(ship.data.get("manoeuvring", {}).get("hull_derivatives", "clarke")),
                     manoeuvre_breadth=float(statics["bwl"]))  # particulars' breadth: the waterline breadth
     return ds, rows, tracks, zigzags
+
+
+#: tolerances of the following-wave load rows (:func:`_following_wave_load_rows`): the mean surge
+#: force (second order: it sets the surf-riding threshold) and the first harmonics and mean pitch
+#: moment (per first-harmonic amplitude), the latter as the time-domain rows against pressure
+#: integration (:mod:`stabflow.validation.dynamics`)
+FOLLOWING_WAVE_TOLERANCE = {"mean": 0.02, "h1": 0.04}
+#: commanded speed of those rows, a fraction of Melnikov's threshold: periodic surging
+FOLLOWING_WAVE_SPEED = 0.6
+
+
+def _following_wave_load_rows(ship: Ship, model, lams, height: float, melnikov, out: dict) -> list:
+    """Validation rows: the 6-DOF kernel's FK + HS loads on the surging, heaving and pitching hull in
+    the surf-riding cases' regular following waves against surface-pressure integration on the hull
+    mesh at the same poses (:func:`stabflow.dynamics.surf_riding.following_wave_loads`), at
+    ``FOLLOWING_WAVE_SPEED`` x Melnikov's threshold; SKIPPED without a mesh."""
+    from stabflow.dynamics.surf_riding import following_wave_loads
+    from stabflow.validation import Check
+    from stabflow.validation.dynamics import NotApplicable, pressure_mesh
+
+    ref = ("surface-pressure integration on the hull mesh at the record's poses (exact surface, decay off "
+           "as the kernel's paper 000 eq 9)")
+    rows = []
+    specs = (("mean surge force", "fx", "mean", "mean"), ("surge force first harmonic", "fx", "h1", "h1"),
+             ("heave force first harmonic", "fz", "h1", "h1"), ("pitch moment first harmonic", "my", "h1", "h1"),
+             ("mean pitch moment per its first harmonic", "my", "mean", "h1"))
+    try:
+        mesh = pressure_mesh(ship)
+    except NotApplicable as e:
+        mesh = str(e)
+    for lam, u_m in zip(lams, melnikov):
+        speed = FOLLOWING_WAVE_SPEED * float(u_m) if np.isfinite(u_m) else np.nan
+        tag = (f"6-DOF loads, regular following wave lambda {lam:g} m, H {height:g} m, surging at "
+               f"{speed:.2f} m/s ({FOLLOWING_WAVE_SPEED:g} x Melnikov's threshold)")
+        names = [f"{tag}: {label}, kernel / pressure integration - 1" if den == q else
+                 f"{tag}: {label}, (kernel - pressure integration) / pressure's first harmonic"
+                 for label, _, q, den in specs]
+        if isinstance(mesh, str):
+            rows.extend(Check.not_applicable(n, mesh, "-", ref) for n in names)
+            continue
+        try:
+            if not np.isfinite(speed):
+                raise ValueError("Melnikov's threshold was not found")
+            r = following_wave_loads(model, *mesh, lam, height, speed)
+        except ValueError as e:
+            rows.extend(Check.failed(n, str(e), "-", ref, tolerance=FOLLOWING_WAVE_TOLERANCE[den])
+                        for n, (_, _, _, den) in zip(names, specs))
+            continue
+        for k, v in r.items():
+            out[f"following_wave_{lam:g}_{k}"] = v
+        for name, (_, f, q, den) in zip(names, specs):
+            a, b = r[f"kernel_{f}_{q}"], r[f"pressure_{f}_{q}"]
+            value = a / b - 1.0 if den == q else (a - b) / r[f"pressure_{f}_h1"]
+            rows.append(Check(name, value, FOLLOWING_WAVE_TOLERANCE[den], "-",
+                              f"{ref}: {b:.4g} {'N m' if f == 'my' else 'N'} (pitch {r['pitch_deg']:.1f} degree, "
+                              f"encounter {r['encounter_frequency']:.3f} rad/s)"))
+    return rows
 
 
 def _statics(ship: Ship) -> xr.Dataset:

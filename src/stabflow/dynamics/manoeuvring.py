@@ -310,6 +310,9 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     m = np.zeros(K6.N_M)
     m[K6.M_CURVED] = 1.0 if curved else 0.0
     m[K6.M_KEEL_LINE] = 1.0
+    # the calm waterline's height above the keel at G's station, body axes (``_station_wave``)
+    h0 = K._origin_height(rest[K.S_Z], 0.0, rest[K.S_PITCH], lcg, kg)
+    m[K6.M_WL_HEIGHT] = (lcg * np.sin(rest[K.S_PITCH]) - h0) / np.cos(rest[K.S_PITCH])
     if memory is not None:
         from stabflow.dynamics.radiation import memory_parameters, transom
 
@@ -592,7 +595,7 @@ def _linear_system(model: SixDof, eps: float = 1e-6):
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = 0.0, 1.0, 1.0
     nst = len(model.sec.x)
     # the foils' lift branches from their angles of attack (-1), as the kernel's modes at a step's start
-    scratch = (np.zeros(6), np.zeros((nst, 4 if m[K6.M_CURVED] != 0.0 else 2)), np.zeros((nst, 5)), np.zeros((6, 6)),
+    scratch = (np.zeros(6), np.zeros((nst, 5)), np.zeros((nst, 5)), np.zeros((6, 6)),
                np.zeros(6),
                np.full(len(model.foils) + 2, -1, np.int64))
 

@@ -194,3 +194,82 @@ def simulated_threshold(model: SixDof, wavelength: float, height: float, lo: flo
         else:
             lo = mid
     return 0.5 * (lo + hi)
+
+
+def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, height: float, speed: float, *,
+                         periods: int = 4, ramp_periods: float = 40.0, dt: float = 0.05) -> dict[str, float]:
+    """The 6-DOF kernel's FK + HS loads on the heaving, pitching and surging hull in a regular
+    following wave against surface-pressure integration on the hull mesh at the same poses.
+
+    The 6-DOF record at the commanded ``speed`` [m/s] grows the wave over ``ramp_periods`` encounter
+    periods (as :func:`surf_rides`), then ``periods`` encounter periods are sampled every step; the
+    ship must be surging periodically there (the waves overtaking it by about a wavelength each
+    encounter period, not captured: ValueError). At each pose the kernel's loads (``_kernels_6dof._wave_loads``, as the
+    record's right-hand side) and :class:`stabflow.dynamics.pressure.PressureModel`'s (exact surface,
+    decay off as the kernel's eq 9; the body origin moved to where the pose puts it) are formed.
+
+    Returns the mean and first-harmonic amplitude at the surging motion's encounter frequency
+    (``encounter_frequency`` [rad/s], lower than at the commanded speed) of the surge force
+    ``fx``, heave force ``fz`` [N] and pitch moment ``my`` [N m] for ``kernel`` and ``pressure``
+    (keys ``"{kernel|pressure}_{fx|fz|my}_{mean|h1}"``), and the pitch amplitude ``pitch_deg``.
+    The mean surge force is the second-order force that, with the resistance, sets the
+    surf-riding threshold."""
+    from stabflow.dynamics.manoeuvring import run_six_dof, wave_line
+    from stabflow.dynamics.pressure import PressureModel
+
+    if model.heading_deg != 0.0:
+        raise ValueError(f"following_wave_loads: a following-wave model (heading 0), not {model.heading_deg:g} degree")
+    k = 2 * np.pi / wavelength
+    w = np.sqrt(G * k)
+    c = w / k
+    a = 0.5 * height
+    if not 0.0 <= speed < c:
+        raise ValueError(f"speed {speed:g} m/s: periodic surging needs 0 <= U < c = {c:.3f} m/s")
+    m = replace(model, speed=float(speed), m=model.m.copy())
+    m.m[K6.M_SPEED] = speed
+    m.m[K6.M_THRUST] = float(resistance(m, speed))
+    we = w - k * speed
+    te = 2 * np.pi / we
+    waves = (np.array([a]), np.array([w]), np.array([0.0]))
+    ramp = ramp_periods * te
+    # surging slows the waves' passage: room for 3 x the nominal periods, sampled over the last
+    # ``periods`` passages of a crest (the motion's own period)
+    states, _, status = run_six_dof(m, waves, ramp + 3 * periods * te, dt, ramp_s=ramp)
+    if status != K6.OK:
+        raise ValueError(f"the following-wave record at {speed:g} m/s did not complete (status {status})")
+    t = np.arange(len(states)) * dt
+    rel = states[:, K.S_X] + (speed - c) * t  # G's position relative to the wave
+    after = np.nonzero((t >= ramp) & (rel >= rel[-1] + periods * wavelength))[0]
+    if len(after) == 0:
+        raise ValueError(f"at {speed:g} m/s the ship is not surging periodically in the wave (lambda {wavelength:g} m): "
+                         f"{(rel[np.searchsorted(t, ramp)] - rel[-1]) / wavelength:.2f} waves passed it in "
+                         f"{3 * periods} encounter periods (captured: surf-riding)")
+    pick = np.arange(after[-1], len(states) - 1)
+    we = 2 * np.pi * periods / (t[pick[-1] + 1] - t[pick[0]])  # the surging motion's encounter frequency
+    p = m.p
+    xg, zg, rho = float(p[K.P_XG]), float(p[K.P_ZG]), float(p[K.P_RHO])
+    pm = PressureModel(vertices, faces, rho, xg, zg, waves, 0.0, speed, decay=False)
+    args = kernel_args(m.sec, m.tables)
+    nst = len(m.sec.x)
+    wave, work, f = np.empty((nst, 5)), np.empty((nst, 5)), np.empty(6)
+    loads = np.empty((2, len(pick), 3))
+    for j, i in enumerate(pick):
+        s = states[i]
+        line, xi0, h, wrap = wave_line(m, waves, t[i], 0, dt, 0.0, 0.0)
+        mm = m.m.copy()
+        mm[K6.M_XI0], mm[K6.M_DXI], mm[K6.M_WRAP], mm[K6.M_XI_RATE] = xi0, h, wrap, 0.0
+        K6._wave_loads(*args, p, mm, line[0], s, f, wave, work)
+        loads[0, j] = f[[0, 2, 4]]
+        th, ph = s[K.S_PITCH], s[K.S_ROLL]
+        # the body origin's horizontal position: G's less R (x_G, 0, z_G)'s (pitch only: no yaw, sway)
+        xo = s[K.S_X] + xg - (xg * np.cos(th) + zg * np.sin(th) * np.cos(ph))
+        pm.phase = np.array([k * xo])
+        loads[1, j] = pm.loads(t[i], K._origin_height(s[K.S_Z], ph, th, xg, zg), ph, th)[[0, 2, 4]]
+    rot = np.exp(1j * we * t[pick])
+    out = {"pitch_deg": float(np.degrees(0.5 * np.ptp(states[pick, K.S_PITCH]))), "encounter_frequency": float(we)}
+    for a_, src in enumerate(("kernel", "pressure")):
+        for b_, q in enumerate(("fx", "fz", "my")):
+            x = loads[a_, :, b_]
+            out[f"{src}_{q}_mean"] = float(np.mean(x))
+            out[f"{src}_{q}_h1"] = float(abs(2.0 * np.mean(x * rot)))
+    return out
