@@ -433,7 +433,7 @@ def _following_wave_load_rows(ship: Ship, model, lams, height: float, melnikov, 
                         for n, (_, _, _, den) in zip(names, specs))
             continue
         for k, v in r.items():
-            out[f"following_wave_{lam:g}_{k}"] = v
+            out[f"following_wave_{lam:g}_{k}".replace(".", "_")] = v  # e.g. following_wave_42_7_pitch_deg
         for name, (_, f, q, den) in zip(names, specs):
             a, b = r[f"kernel_{f}_{q}"], r[f"pressure_{f}_{q}"]
             value = a / b - 1.0 if den == q else (a - b) / r[f"pressure_{f}_h1"]
