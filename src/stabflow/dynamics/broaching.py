@@ -368,7 +368,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
             else:
                 rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
                                          "-", ref, kind="consistency", tolerance=0.05))
-    rows.extend(_following_wave_load_rows(ship, model, lams, h, thr[:, 0], out))
+    rows.extend(_following_wave_load_rows(ship, model, lams, h, thr[:, 0], out, mc["surf_riding"]))
     if model.memory is not None:
         rows.extend(radiation_checks(bem_from_dataset(radiation), model.memory))
         out["memory_poles"] = float(len(model.memory.poles))
@@ -395,11 +395,12 @@ FOLLOWING_WAVE_TOLERANCE = {"mean": 0.02, "h1": 0.04}
 FOLLOWING_WAVE_SPEED = 0.6
 
 
-def _following_wave_load_rows(ship: Ship, model, lams, height: float, melnikov, out: dict) -> list:
+def _following_wave_load_rows(ship: Ship, model, lams, height: float, melnikov, out: dict, enabled: bool = True) -> list:
     """Validation rows: the 6-DOF kernel's FK + HS loads on the surging, heaving and pitching hull in
     the surf-riding cases' regular following waves against surface-pressure integration on the hull
     mesh at the same poses (:func:`stabflow.dynamics.surf_riding.following_wave_loads`), at
-    ``FOLLOWING_WAVE_SPEED`` x Melnikov's threshold; SKIPPED without a mesh."""
+    ``FOLLOWING_WAVE_SPEED`` x Melnikov's threshold; SKIPPED without a mesh or with the surf-riding
+    cases off (``enabled``)."""
     from stabflow.dynamics.surf_riding import following_wave_loads
     from stabflow.validation import Check
     from stabflow.validation.dynamics import NotApplicable, pressure_mesh
@@ -411,7 +412,7 @@ def _following_wave_load_rows(ship: Ship, model, lams, height: float, melnikov, 
              ("heave force first harmonic", "fz", "h1", "h1"), ("pitch moment first harmonic", "my", "h1", "h1"),
              ("mean pitch moment per its first harmonic", "my", "mean", "h1"))
     try:
-        mesh = pressure_mesh(ship)
+        mesh = pressure_mesh(ship) if enabled else "broaching.manoeuvres.surf_riding is off in this config"
     except NotApplicable as e:
         mesh = str(e)
     for lam, u_m in zip(lams, melnikov):
