@@ -297,7 +297,8 @@ def test_records_converge_with_the_step(trawler):
     waterline distance, have kinks at their cells, and since the tilted sections' surge force reads
     their centroids (``_kernels_6dof._tilt_loads``) these leave an error floor near 1e-6 of the largest
     value (tables: 1.7e-6 at 0.05 s, 1.2e-6 at 0.025 s, 2.1e-7 at 0.0125 s against 0.003125 s).
-    Exact clipping, measured: 5.8e-7 at 0.05 s and 4.0e-8 at 0.025 s (ratio 14.4; RK4's 16)."""
+    Exact clipping, measured: 5.8e-7 at 0.05 s and 4.0e-8 at 0.025 s (ratio 14.4; RK4's 16). The
+    tables' path (the default) is held to the floor: both steps within 3e-6 of dt 0.00625 s."""
     from stabflow.waves.seaway import Seaway
 
     ship, sec, st, co, tabs, ab = trawler
@@ -307,6 +308,10 @@ def test_records_converge_with_the_step(trawler):
     err = _trajectory_error(model, waves, ref, (0.025, 0.05))
     assert err[0.05] < 2e-6 and err[0.025] < 2e-7, err
     assert err[0.05] / err[0.025] > 8.0, err  # first order: 2, second: 4
+    tabled = six_dof(trawler, heading=45.0)
+    ref = simulate_six_dof(tabled, waves, 30.0, 0.00625, dtype=np.float64)
+    err = _trajectory_error(tabled, waves, ref, (0.025, 0.05))
+    assert max(err.values()) < 3e-6, err
 
 
 def _trajectory_error(model, waves, ref, dts):

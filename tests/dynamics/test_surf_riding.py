@@ -107,16 +107,16 @@ def test_melnikov_with_the_wave_force_is_lower():
 
 def test_six_dof_loads_in_a_following_wave_match_pressure_integration():
     """The 6-DOF kernel's FK + HS loads on the surging, heaving and pitching trawler in a regular
-    following wave (lambda 85.3 m, H 1.8 m, 2 m/s: periodic surging, 4.6 degree of pitch; this
-    fixture's constant heave-pitch damping surf-rides in lambda 42.7 m at every speed) against
+    following wave (lambda 42.7 m, H 1.8 m, commanded 0.3 m/s: this fixture's constant heave-pitch
+    damping surf-rides there from about 1 m/s; periodic surging here, 8.3 degree of pitch) against
     surface-pressure integration on the hull mesh at the same poses (exact surface, decay off), over
     4 encounter periods of the motion: the mean surge force, the second-order force that sets the
-    surf-riding threshold, within 2 % (measured +0.37 %); the first harmonics of surge force, heave
-    force and pitch moment within 4 % (-0.01 / +0.21 / +0.19 %). The pipeline's rows run the same
-    comparison with the radiation memory in lambda 42.7 m, where the stations read on the keel line
-    (z = 0) with the station's slope for the surge force, as before 2026-12-04, gave a mean surge
-    force +12.6 %, a heave force first harmonic +25 % and a pitch moment first harmonic +19.5 % off
-    (2 m/s, 8 degree of pitch)."""
+    surf-riding threshold, within 1 % (measured +0.45 %); the first harmonics of surge force, heave
+    force and pitch moment within 4 % as complex differences (amplitude and phase; measured 0.04 /
+    1.47 / 1.11 %). An independent
+    review measured what each fault would give here: the station's along-ship offset flipped +2.0 %
+    on the mean (heave harmonic +3.3 % in amplitude), the centroid's distance in ``_tilt_loads``
+    flipped -6.8 %, no ``_tilt_loads`` -3.2 %, the keel line of 2026-12-03 +5.7 % and +20 %."""
     from stabflow.config import load_ship
     from stabflow.dynamics.surf_riding import following_wave_loads
     from stabflow.validation.dynamics import pressure_mesh
@@ -125,13 +125,13 @@ def test_six_dof_loads_in_a_following_wave_match_pressure_integration():
 
     model = _trawler()
     v, f = pressure_mesh(load_ship(SHIPS / "trawler.yaml"))
-    lam = 85.3
-    r = following_wave_loads(model, v, f, lam, 1.8, 2.0)
-    assert r["pitch_deg"] > 4.0  # the tilt of the sections matters here
+    lam, speed = 42.7, 0.3
+    r = following_wave_loads(model, v, f, lam, 1.8, speed)
+    assert r["pitch_deg"] > 7.0  # the tilt of the sections matters here
     c = np.sqrt(G * lam / (2 * np.pi))
-    assert r["encounter_frequency"] < 2 * np.pi / lam * (c - 2.0)  # surging slows the waves' passage
-    assert r["kernel_fx_mean"] == pytest.approx(r["pressure_fx_mean"], rel=0.02)
+    assert r["encounter_frequency"] < 2 * np.pi / lam * (c - speed)  # surging slows the waves' passage
+    assert r["kernel_fx_mean"] == pytest.approx(r["pressure_fx_mean"], rel=0.01)
     for q in ("fx", "fz", "my"):
-        assert r[f"kernel_{q}_h1"] == pytest.approx(r[f"pressure_{q}_h1"], rel=0.04), q
+        assert r[f"{q}_h1_difference"] < 0.04, q
     with pytest.raises(ValueError, match="not surging periodically"):
-        following_wave_loads(model, v, f, 42.7, 1.8, 2.0)  # captured: surf-riding
+        following_wave_loads(model, v, f, lam, 1.8, 2.0)  # captured: surf-riding

@@ -211,7 +211,9 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
     Returns the mean and first-harmonic amplitude at the surging motion's encounter frequency
     (``encounter_frequency`` [rad/s], lower than at the commanded speed) of the surge force
     ``fx``, heave force ``fz`` [N] and pitch moment ``my`` [N m] for ``kernel`` and ``pressure``
-    (keys ``"{kernel|pressure}_{fx|fz|my}_{mean|h1}"``), and the pitch amplitude ``pitch_deg``.
+    (keys ``"{kernel|pressure}_{fx|fz|my}_{mean|h1}"``), the first harmonics' complex difference
+    |kernel - pressure| / |pressure| (``"{fx|fz|my}_h1_difference"``, amplitude and phase), and the
+    pitch amplitude ``pitch_deg``.
     The mean surge force is the second-order force that, with the resistance, sets the
     surf-riding threshold."""
     from stabflow.dynamics.manoeuvring import run_six_dof, wave_line
@@ -267,9 +269,11 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
         loads[1, j] = pm.loads(t[i], K._origin_height(s[K.S_Z], ph, th, xg, zg), ph, th)[[0, 2, 4]]
     rot = np.exp(1j * we * t[pick])
     out = {"pitch_deg": float(np.degrees(0.5 * np.ptp(states[pick, K.S_PITCH]))), "encounter_frequency": float(we)}
-    for a_, src in enumerate(("kernel", "pressure")):
-        for b_, q in enumerate(("fx", "fz", "my")):
-            x = loads[a_, :, b_]
-            out[f"{src}_{q}_mean"] = float(np.mean(x))
-            out[f"{src}_{q}_h1"] = float(abs(2.0 * np.mean(x * rot)))
+    for b_, q in enumerate(("fx", "fz", "my")):
+        h1 = [2.0 * np.mean(loads[a_, :, b_] * rot) for a_ in range(2)]
+        for a_, src in enumerate(("kernel", "pressure")):
+            out[f"{src}_{q}_mean"] = float(np.mean(loads[a_, :, b_]))
+            out[f"{src}_{q}_h1"] = float(abs(h1[a_]))
+        # amplitude and phase together: a station read at the wrong place along the ship shifts the phase
+        out[f"{q}_h1_difference"] = float(abs(h1[0] - h1[1]) / abs(h1[1]))
     return out
