@@ -146,11 +146,12 @@ def _station_wave(xs, p, m, s, line, wave):
     ``M_WL_HEIGHT`` the calm waterline's height above the keel, at (z_w - z_G) sin(theta) cos(phi)
     along G's axis. A pitched section is a tilted slab whose points at height z lie z sin(theta)
     along the ship from its keel; the plane takes the wave as constant along the slab, so it is
-    read where the slab's waterline is. Read at the keel (z = 0) instead, the trawler's mean
-    vertical force in a following wave (lambda 42.7 m, H 1.8 m, 8-9 degree of pitch) was 1.1 % off
-    pressure integration on the exact surface and its mean surge force +33 to +43 %; at z_w 0.05 % and
-    +3 %, with ``_tilt_loads`` (stabflow measurement, 2026-12-04: validation row of the broaching
-    step). With R = Rz(psi) Ry(theta) Rx(phi), the station's offset from G before the yaw is
+    read where the slab's waterline is. Read at the keel (z = 0) instead, on the trawler surging in a
+    following wave (lambda 42.7 m, H 1.8 m, 2 m/s, 8 degree of pitch; stabflow measurement,
+    2026-12-04) the mean vertical force was +0.85 % of pressure integration's on the exact surface,
+    the heave force's first harmonic +25 % and the mean surge force +12.6 %; at
+    z_w -0.04 %, -1.3 % and, with ``_tilt_loads``, +0.2 % (validation rows of the broaching step).
+    With R = Rz(psi) Ry(theta) Rx(phi), the station's offset from G before the yaw is
     (cos(theta) (x_i - x_G) + (z_w - z_G) sin(theta) cos(phi), z_G sin(phi)): the ship-axis component
     of R (x_i - x_G, 0, z_w - z_G) and the lateral one of R (x_i - x_G, 0, -z_G).
     ``M_KEEL_LINE`` 0 puts the stations on G's axis turned by the yaw, where the 3-DOF model's
@@ -238,8 +239,8 @@ def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, wave, w
     RK4's order to about first.) Its moment takes the section's centroid as the lever, as
     ``_fkhs`` does; the spread of the force over the section's height is left out. Second order in
     wave slope times pitch; it is the mean surge force that, with the resistance, sets the
-    surf-riding threshold (trawler, lambda 42.7 m, 2 m/s, 7.7 degree of pitch: within 0.6 % of
-    pressure integration; the station's slope alone, read on the keel line as before 2026-12-04,
+    surf-riding threshold (trawler, lambda 42.7 m, 2 m/s, 7.7 degree of pitch: +0.5 % of
+    pressure integration's; the station's slope alone, read on the keel line as before 2026-12-04,
     +12.6 %: validation rows of the broaching step)."""
     st = math.sin(theta)
     cp = math.cos(phi)

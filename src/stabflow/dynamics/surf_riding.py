@@ -157,6 +157,14 @@ def melnikov_threshold(model: SixDof, wavelength: float, height: float, wave_for
     return float(optimize.brentq(lambda u: float(resistance(model, u)) - mean_r, 1e-3, c))
 
 
+def at_commanded_speed(model: SixDof, speed: float) -> SixDof:
+    """A copy of the model at the commanded ``speed`` [m/s], its thrust the calm-water resistance there."""
+    m = replace(model, speed=float(speed), m=model.m.copy())
+    m.m[K6.M_SPEED] = speed
+    m.m[K6.M_THRUST] = float(resistance(m, speed))
+    return m
+
+
 def surf_rides(model: SixDof, wavelength: float, height: float, speed: float, *, encounters: float = 40.0,
                dt: float = 0.05) -> bool:
     """True if the 6-DOF model at commanded ``speed`` [m/s] is captured by the regular following
@@ -167,9 +175,7 @@ def surf_rides(model: SixDof, wavelength: float, height: float, speed: float, *,
     k = 2 * np.pi / wavelength
     w = np.sqrt(G * k)
     c = w / k
-    m = replace(model, speed=float(speed), m=model.m.copy())
-    m.m[K6.M_SPEED] = speed
-    m.m[K6.M_THRUST] = float(resistance(m, speed))
+    m = at_commanded_speed(model, speed)
     te = wavelength / max(c - speed, 1e-3 * c)
     ramp = encounters * te
     ds = simulate_six_dof(m, (np.array([0.5 * height]), np.array([w]), np.array([0.0])), 2.0 * ramp, dt, ramp_s=ramp)
@@ -227,9 +233,7 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
     a = 0.5 * height
     if not 0.0 <= speed < c:
         raise ValueError(f"speed {speed:g} m/s: periodic surging needs 0 <= U < c = {c:.3f} m/s")
-    m = replace(model, speed=float(speed), m=model.m.copy())
-    m.m[K6.M_SPEED] = speed
-    m.m[K6.M_THRUST] = float(resistance(m, speed))
+    m = at_commanded_speed(model, speed)
     we = w - k * speed
     te = 2 * np.pi / we
     waves = (np.array([a]), np.array([w]), np.array([0.0]))
