@@ -259,12 +259,13 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
     nst = len(m.sec.x)
     wave, work, f = np.empty((nst, 5)), np.empty((nst, 5)), np.empty(6)
     loads = np.empty((2, len(pick), 3))
+    # the sampled steps' wave (one periodic table, its rows on the half-step grid from the first)
+    line, xi0, h, wrap = wave_line(m, waves, t[pick[0]], len(pick) - 1, dt, 0.0, 0.0)
+    mm = m.m.copy()
+    mm[K6.M_XI0], mm[K6.M_DXI], mm[K6.M_WRAP], mm[K6.M_XI_RATE] = xi0, h, wrap, 0.0
     for j, i in enumerate(pick):
         s = states[i]
-        line, xi0, h, wrap = wave_line(m, waves, t[i], 0, dt, 0.0, 0.0)
-        mm = m.m.copy()
-        mm[K6.M_XI0], mm[K6.M_DXI], mm[K6.M_WRAP], mm[K6.M_XI_RATE] = xi0, h, wrap, 0.0
-        K6._wave_loads(*args, p, mm, line[0], s, f, wave, work)
+        K6._wave_loads(*args, p, mm, line[2 * j], s, f, wave, work)
         loads[0, j] = f[[0, 2, 4]]
         th, ph = s[K.S_PITCH], s[K.S_ROLL]
         # the body origin's horizontal position: G's less R (x_G, 0, z_G)'s (pitch only: no yaw, sway)
