@@ -100,11 +100,18 @@ def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
     axis = np.stack([s[K.S_X] + xg + np.cos(s[K.S_YAW]) * d, s[K.S_Y] + np.sin(s[K.S_YAW]) * d], axis=1)
     assert np.max(np.abs(keel[:, 1] - axis[:, 1])) > 1.5  # the keel line lies 1.99 m to the side here
     assert np.max(np.abs(along - ((keel[:, 0] - G0[0]) * ex + (keel[:, 1] - G0[1]) * ey))) > 0.3  # zw sin(6 deg)
+    m[K6.M_CURVED] = 1.0  # eta_xixi is the curved waterline's
     for flag, (X, Y) in ((1.0, placed), (0.0, axis.T)):
         m[K6.M_KEEL_LINE] = flag
-        wave = np.empty((len(model.sec.x), 5))  # with the curved waterline's eta_xixi
+        wave = np.empty((len(model.sec.x), 5))
         assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], wave)
         _check_station_wave(wave, X, Y, amp, w, ph)
+    # the planar waterline leaves eta_xixi's column as it was, the others the same
+    m[K6.M_CURVED] = 0.0
+    planar = np.full_like(wave, 7.0)
+    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], planar)
+    assert np.all(planar[:, 3] == 7.0)
+    assert np.array_equal(planar[:, [0, 1, 2, 4]], wave[:, [0, 1, 2, 4]])
 
 
 def _check_station_wave(wave, X, Y, amp, w, ph):

@@ -76,3 +76,27 @@ def test_station_table_curvature_column_is_dS_dxi():
     sm = station_wave_table(amp, w, ph, xs - h, beta, 3.0, t)[:, :, 1]
     assert np.allclose(np.cos(np.radians(beta)) * tab[:, :, 3], (sp - sm) / (2 * h), rtol=1e-5, atol=1e-8)
     assert np.allclose(tab[:, :, :2], station_wave_table(amp, w, ph, xs, beta, 3.0, t), rtol=1e-12, atol=1e-12)
+
+
+def test_equally_spaced_decides_as_numpy_allclose():
+    """The line tables' check of equally spaced points (``_equally_spaced``, numba) takes numpy's
+    ``allclose(diff(x), x[1] - x[0], rtol=1e-12, atol=0)`` decision on points near and far from the
+    origin (a far drift loses the spacing's last bits), perturbed at and around the tolerance."""
+    from stabflow.waves._kernels import _equally_spaced
+
+    rng = np.random.default_rng(3)
+    cases = []
+    for x0 in (0.0, -19.5, 1.0e3, 4.0e4, 3.0e6):
+        x = x0 + 0.6 * np.arange(65)
+        cases.append(x)
+        for eps in (1e-13, 1e-12, 3e-12, 1e-9):
+            y = x.copy()
+            y[rng.integers(1, 65)] += eps * 0.6
+            cases.append(y)
+    cases += [np.array([0.0, 1.0]), np.array([0.0, 1.0, 2.0]), np.array([0.0, 1.0, np.nan])]
+    decisions = set()
+    for x in cases:
+        ref = len(x) > 2 and bool(np.allclose(np.diff(x), x[1] - x[0], rtol=1e-12, atol=0.0))
+        assert _equally_spaced(x, 1e-12) == ref
+        decisions.add(ref)
+    assert decisions == {True, False}

@@ -160,7 +160,8 @@ def _station_wave(xs, p, m, s, line, wave):
 
     ``wave`` (nst, 5) receives (eta, S, 0, eta_xixi, u), u the station's coordinate in the table
     [intervals] (``_fkhs`` reads the first two columns, or four for the curved waterline;
-    ``_tilt_loads`` the fifth)."""
+    ``_tilt_loads`` the fifth); eta_xixi only with the curved waterline (``M_CURVED``), the column
+    left as it was otherwise."""
     xg = p[P_XG]
     cb = p[P_COS_BETA]
     sb = p[P_SIN_BETA]
@@ -184,6 +185,7 @@ def _station_wave(xs, p, m, s, line, wave):
     h = m[M_DXI]
     npt = line.shape[0]
     wrap = m[M_WRAP]
+    curved = m[M_CURVED] != 0.0
     inside = True
     for i in range(xs.shape[0]):
         d = ct * (xs[i] - xg) + ox
@@ -202,7 +204,8 @@ def _station_wave(xs, p, m, s, line, wave):
         wave[i, 0] = _hermite(line[k, 0], line[k, 1], line[k + 1, 0], line[k + 1, 1], t, h)
         wave[i, 1] = _hermite(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
         wave[i, 2] = 0.0
-        wave[i, 3] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
+        if curved:
+            wave[i, 3] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
         wave[i, 4] = u
     return inside
 
@@ -685,14 +688,17 @@ def _stage(a, j, n, dt, theta, sub, s, helm, modes, ds, f, wave, work, mq, r):
 
 
 @njit(cache=True, inline="always")
-def _rk4_span(a, j, n, dt, t0, t1, sub, sa, helm, modes, k1, k2, k3, k4, tmp, out, f, wave, work, mq, r):
+def _rk4_span(a, j, n, dt, t0, t1, sub, sa, helm, modes, k1, k2, k3, k4, tmp, out, f, wave, work, mq, r, have_k1):
     """One RK4 step from ``sa`` at the fraction ``t0`` of step ``n`` to ``t1``, the modes held: the
-    state into ``out`` (may be ``sa``), the first stage's rate stays in ``k1``. Returns False if a
+    state into ``out`` (may be ``sa``), the first stage's rate stays in ``k1`` (``have_k1``: it is
+    there already, from a span that started at the same state, time and modes). Returns False if a
     station left the wave table."""
     ns = sa.shape[0]
     h = (t1 - t0) * dt
     tm = 0.5 * (t0 + t1)
-    ok = _stage(a, j, n, dt, t0, sub, sa, helm, modes, k1, f, wave, work, mq, r)
+    ok = True
+    if not have_k1:
+        ok = _stage(a, j, n, dt, t0, sub, sa, helm, modes, k1, f, wave, work, mq, r)
     for q in range(ns):
         tmp[q] = sa[q] + 0.5 * h * k1[q]
     ok &= _stage(a, j, n, dt, tm, sub, tmp, helm, modes, k2, f, wave, work, mq, r)
@@ -777,7 +783,8 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
         while True:
             # RK4 from sa at the fraction ta of the step to its end, the modes held
             h = (1.0 - ta) * dt
-            ok &= _rk4_span(a, j, n, dt, ta, 1.0, sub, sa, helm, modes, k1, k2, k3, k4, tmp, s, f, wave, work, mq, r)
+            ok &= _rk4_span(a, j, n, dt, ta, 1.0, sub, sa, helm, modes, k1, k2, k3, k4, tmp, s, f, wave, work, mq, r,
+                            False)
             _modes(m, foils, s, helm, modes, nat)
             if _same(nat, modes):
                 break
@@ -800,9 +807,10 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
             # the modes just past the switch
             _hermite_state(hi, h, sa, k1, s, kb, tmp)
             _modes(m, foils, tmp, helm, modes, nat)
-            # RK4 from sa to the switch with the old modes
+            # RK4 from sa to the switch with the old modes (its first stage is the span's above, in k1)
             tb = ta + hi * (1.0 - ta)
-            ok &= _rk4_span(a, j, n, dt, ta, tb, sub, sa, helm, modes, k1, k2, k3, k4, tmp, sa, f, wave, work, mq, r)
+            ok &= _rk4_span(a, j, n, dt, ta, tb, sub, sa, helm, modes, k1, k2, k3, k4, tmp, sa, f, wave, work, mq, r,
+                            True)
             for q in range(nf + 2):
                 modes[q] = nat[q]
             if modes[nf + 1] != 0:

@@ -47,7 +47,7 @@ from stabflow.dynamics.roll_damping import NU, friction_radius_area, particulars
 from stabflow.dynamics.tables import SectionTables, kernel_args
 from stabflow.geometry import Sections
 from stabflow.io import annotate
-from stabflow.waves.synthesis import line_wave_table
+from stabflow.waves.synthesis import LineWaves, one_blas_thread
 
 
 #: Hoerner's 2-D cross-flow drag coefficient C_D against B / (2 T): the digitised curve of the
@@ -420,27 +420,29 @@ def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: f
               points_per_wavelength: float = 8.0, dtype=np.float64, drift: float = 0.0):
     """Line table (2 nsteps + 1, npoints, 3) of (eta, S, dS/dxi) from time ``t0`` [s] on the
     half-step grid, its first point and spacing (xi0, dxi) [m], and the number of intervals of a
-    periodic table (0: not periodic).
+    periodic table (0: not periodic). ``waves``: (amp, omega, phase) of the components, or a
+    :class:`~stabflow.waves.synthesis.LineWaves` of them for the model's heading and speed (a
+    record's chunks).
 
     The points cover ``centre`` +- ``reach`` [m] of the propagation coordinate at ``t0`` and move
     along it at ``drift`` [m/s] (the kernel's ``M_XI_RATE``; not for the periodic tables), spaced at the
     shortest component's wavelength / ``points_per_wavelength`` (cubic Hermite error about
     (k h)^4 / 384, 0.1 % at 8 points). A single regular wave is tabulated over one wavelength at 32
     points and calm water as zeros, both read periodically (any drift)."""
-    amp, omega, phase = (np.asarray(a, float) for a in waves)
+    lw = waves if isinstance(waves, LineWaves) else LineWaves(*waves, model.heading_deg, model.speed)
     t_half = t0 + np.arange(2 * nsteps + 1) * 0.5 * dt
-    if len(amp) == 0:
+    if len(lw.amp) == 0:
         return np.zeros((len(t_half), 2, 3)), 0.0, 1.0, 1
-    if len(amp) == 1:
-        lam = 2 * np.pi * float(model.p[K.P_G]) / float(omega[0]) ** 2
+    if len(lw.amp) == 1:
+        lam = 2 * np.pi * float(model.p[K.P_G]) / float(lw.omega[0]) ** 2
         xi = np.arange(33) * lam / 32
-        tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half)
+        tab = lw.table(xi, t_half)
         return np.ascontiguousarray(tab), 0.0, float(xi[1]), 32
-    kmax = float(np.max(omega)) ** 2 / float(model.p[K.P_G])
+    kmax = float(np.max(lw.omega)) ** 2 / float(model.p[K.P_G])
     h = 2 * np.pi / kmax / points_per_wavelength
     n = int(np.ceil(2 * reach / h)) + 1
     xi = centre - reach + h * np.arange(n)
-    tab = line_wave_table(amp, omega, phase, xi, model.heading_deg, model.speed, t_half, dtype=dtype, drift=drift)
+    tab = lw.table(xi, t_half, dtype, drift, spaced=True)
     return np.ascontiguousarray(tab), float(xi[0]), float(h), 0
 
 
@@ -523,40 +525,41 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
     hull = float(np.max(np.abs(model.sec.x - xg)))
     cb, sb = np.cos(np.radians(model.heading_deg)), np.sin(np.radians(model.heading_deg))
     args = kernel_args(model.sec, model.tables)
+    lw = LineWaves(*waves, model.heading_deg, model.speed)
     n0, status = 0, K6.OK
-    while n0 < nsteps and status == K6.OK:
-        n1 = min(nsteps, n0 + per)
-        s = out[n0]
-        # the line table follows G's drift along xi in the moving frame at its present rate; the
-        # points cover the hull plus an allowance for the change of that rate over the chunk
-        span = (n1 - n0) * dt
-        rate = s[K.S_RATE + K.S_X] * cb + s[K.S_RATE + K.S_Y] * sb
-        centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb
-        reach = hull + DRIFT_ALLOWANCE * span + DRIFT_MARGIN
-        while True:
-            ltab, xi0, h, wrap = wave_line(model, waves, t0 + n0 * dt, n1 - n0, dt, centre, reach,
-                                           points_per_wavelength, dtype, drift=rate)
-            if ramp_s > 0:
-                r = np.clip((t0 + n0 * dt + np.arange(len(ltab)) * 0.5 * dt) / ramp_s, 0.0, 1.0)
-                ltab *= (r * r * (3.0 - 2.0 * r))[:, None, None]
-            m = model.m.copy()
-            m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = xi0, h, wrap
-            m[K6.M_XI_RATE] = 0.0 if wrap else rate
-            done, status = K6._simulate6(*args, model.p, m, model.foils, model.strips, ltab, dt, n1 - n0, s,
-                                         np.radians(phi_cap_deg), out[n0:n1 + 1])
-            if status != K6.LEFT_TABLE:
-                break
-            # a station left the table in the last step done: the steps before it saw the wave
-            # everywhere, so the record continues from the last of them on a new table around the
-            # ship (leaving in the first step: the same chunk on a table twice as wide)
-            status = K6.OK
-            done -= 1
-            if done > 0:
-                break
-            reach *= 2.0
-        n0 += done
+    with one_blas_thread():  # held for the record: the chunks' tables then skip its setting
+        while n0 < nsteps and status == K6.OK:
+            n1 = min(nsteps, n0 + per)
+            s = out[n0]
+            # the line table follows G's drift along xi in the moving frame at its present rate; the
+            # points cover the hull plus an allowance for the change of that rate over the chunk
+            span = (n1 - n0) * dt
+            rate = s[K.S_RATE + K.S_X] * cb + s[K.S_RATE + K.S_Y] * sb
+            centre = (s[K.S_X] + xg) * cb + s[K.S_Y] * sb
+            reach = hull + DRIFT_ALLOWANCE * span + DRIFT_MARGIN
+            while True:
+                ltab, xi0, h, wrap = wave_line(model, lw, t0 + n0 * dt, n1 - n0, dt, centre, reach,
+                                               points_per_wavelength, dtype, drift=rate)
+                if ramp_s > 0:
+                    r = np.clip((t0 + n0 * dt + np.arange(len(ltab)) * 0.5 * dt) / ramp_s, 0.0, 1.0)
+                    ltab *= (r * r * (3.0 - 2.0 * r))[:, None, None]
+                m = model.m.copy()
+                m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = xi0, h, wrap
+                m[K6.M_XI_RATE] = 0.0 if wrap else rate
+                done, status = K6._simulate6(*args, model.p, m, model.foils, model.strips, ltab, dt, n1 - n0, s,
+                                             np.radians(phi_cap_deg), out[n0:n1 + 1])
+                if status != K6.LEFT_TABLE:
+                    break
+                # a station left the table in the last step done: the steps before it saw the wave
+                # everywhere, so the record continues from the last of them on a new table around the
+                # ship (leaving in the first step: the same chunk on a table twice as wide)
+                status = K6.OK
+                done -= 1
+                if done > 0:
+                    break
+                reach *= 2.0
+            n0 += done
     return out[:n0 + 1], n0, status
-
 
 
 def six_dof_dataset(model: SixDof, states: np.ndarray, dt: float, status: int) -> xr.Dataset:

@@ -45,29 +45,52 @@ def _line_coefficients(amp, k, phase, xi, uniform, out):
 
     With ``uniform`` (equally spaced points) the phasor exp(i P) is advanced point to point by the
     constant rotation exp(i k h) and reset to the exact value every 32 points, as ``_trig_table``
-    does in time; otherwise cos and sin are evaluated at every point."""
+    does in time; otherwise cos and sin are evaluated at every point. The components are the inner
+    loop, so that their independent recurrences overlap (each is a chain of dependent multiplies)."""
     nc = amp.shape[0]
     npt = xi.shape[0]
     h = xi[1] - xi[0] if npt > 1 else 0.0
+    ak = np.empty(nc)
+    ak2 = np.empty(nc)
+    rr = np.empty(nc)
+    ri = np.empty(nc)
+    c = np.ones(nc)
+    s = np.zeros(nc)
     for n in range(nc):
-        a = amp[n]
-        ak = a * k[n]
-        ak2 = ak * k[n]
-        rr = np.cos(k[n] * h)
-        ri = np.sin(k[n] * h)
-        c = 1.0
-        s = 0.0
-        for j in range(npt):
-            if not uniform or (j & 31) == 0:
+        ak[n] = amp[n] * k[n]
+        ak2[n] = ak[n] * k[n]
+        rr[n] = np.cos(k[n] * h)
+        ri[n] = np.sin(k[n] * h)
+    for j in range(npt):
+        if not uniform or (j & 31) == 0:
+            for n in range(nc):
                 P = k[n] * xi[j] + phase[n]
-                c = np.cos(P)
-                s = np.sin(P)
-            out[n, 3 * j] = a * c
-            out[nc + n, 3 * j] = a * s
-            out[n, 3 * j + 1] = -ak * s
-            out[nc + n, 3 * j + 1] = ak * c
-            out[n, 3 * j + 2] = -ak2 * c
-            out[nc + n, 3 * j + 2] = -ak2 * s
-            nr = c * rr - s * ri
-            s = c * ri + s * rr
-            c = nr
+                c[n] = np.cos(P)
+                s[n] = np.sin(P)
+        for n in range(nc):
+            cn = c[n]
+            sn = s[n]
+            out[n, 3 * j] = amp[n] * cn
+            out[nc + n, 3 * j] = amp[n] * sn
+            out[n, 3 * j + 1] = -ak[n] * sn
+            out[nc + n, 3 * j + 1] = ak[n] * cn
+            out[n, 3 * j + 2] = -ak2[n] * cn
+            out[nc + n, 3 * j + 2] = -ak2[n] * sn
+            c[n] = cn * rr[n] - sn * ri[n]
+            s[n] = cn * ri[n] + sn * rr[n]
+
+
+@njit(cache=True)
+def _equally_spaced(x, rtol):
+    """True if every step of ``x`` is within ``rtol`` of its first step (numpy's
+    ``allclose(diff(x), x[1] - x[0], rtol, atol=0)``, without its arrays) and ``x`` has more than
+    two points."""
+    n = x.shape[0]
+    if n <= 2:
+        return False
+    h = x[1] - x[0]
+    tol = rtol * abs(h)
+    for j in range(1, n):
+        if not abs((x[j] - x[j - 1]) - h) <= tol:
+            return False
+    return True

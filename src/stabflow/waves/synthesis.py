@@ -23,7 +23,7 @@ import threading
 
 import numpy as np
 
-from stabflow.waves._kernels import _line_coefficients, _trig_table
+from stabflow.waves._kernels import _equally_spaced, _line_coefficients, _trig_table
 
 from stabflow.constants import G
 
@@ -44,13 +44,14 @@ def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     return _time_series_product(we, times, coef.reshape(2 * nc, npt * nq).astype(dtype), nq)
 
 
-def _time_series_product(we, times, coef, nq) -> np.ndarray:
+def _time_series_product(we, times, coef, nq, spaced: bool = False) -> np.ndarray:
     """The product of :func:`_time_series_table` with the coefficients ``coef`` (2 nc, npoints nq)
-    already assembled (in the table's dtype) → (nt, npoints, nq)."""
+    already assembled (in the table's dtype) → (nt, npoints, nq); ``spaced``: the caller's times
+    are equally spaced by construction (not checked again)."""
     times = np.asarray(times, float)
     t0 = times[0] if len(times) else 0.0
     dt = times[1] - times[0] if len(times) > 1 else 0.0
-    if len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
+    if not spaced and len(times) > 2 and not np.allclose(np.diff(times), dt, rtol=1e-9, atol=1e-12):
         raise ValueError("times must be equally spaced")
     nc = len(we)
     npt = coef.shape[1] // nq
@@ -152,6 +153,47 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
     return _time_series_table(we, times, cols, dtype)
 
 
+class LineWaves:
+    """A record's wave components ready for its line tables (:func:`line_wave_table`), one chunk
+    after another (the 6-DOF records, ``dynamics.manoeuvring.run_six_dof``): the wave numbers and
+    encounter frequencies are found once.
+
+    Parameters
+    ----------
+    amp, omega, phase : array_like
+        Amplitudes [m], frequencies [rad/s] and phases [rad] of the components.
+    heading_deg : float
+        Wave heading [degree] (0 following).
+    speed : float
+        Speed of the frame along x [m/s].
+    """
+
+    def __init__(self, amp, omega, phase, heading_deg: float, speed: float):
+        self.amp = np.asarray(amp, dtype=float)
+        self.omega = np.asarray(omega, float)
+        self.phase = np.asarray(phase, float)
+        self.heading_deg = heading_deg
+        self.speed = speed
+        self.k = self.omega**2 / G
+        self.we = encounter_frequency(self.omega, speed, heading_deg)
+
+    def table(self, xi, times, dtype=np.float64, drift: float = 0.0, uniform: bool | None = None,
+              spaced: bool = False) -> np.ndarray:
+        """(nt, npoints, 3) table of (eta, S, dS/dxi) at the points ``xi`` [m] (moving along xi at
+        ``drift`` [m/s]) at ``times`` [s], as :func:`line_wave_table`; ``uniform`` (points equally
+        spaced; None: found here) and ``spaced`` (times equally spaced, not checked) spare a
+        caller who builds them so the checks."""
+        xi = np.asarray(xi, float)
+        if uniform is None:
+            uniform = _equally_spaced(xi, 1e-12)
+        we = self.we - self.k * drift
+        t_first = float(times[0]) if len(times) else 0.0
+        coef = np.empty((2 * len(self.amp), 3 * len(xi)), dtype=dtype)
+        # equally spaced points (the 6-DOF tables): phasor recurrence along the line, as in time
+        _line_coefficients(self.amp, self.k, self.phase - self.k * drift * t_first, xi, uniform, coef)
+        return _time_series_product(we, times, coef, 3, spaced=spaced)
+
+
 def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.float64,
                     drift: float = 0.0) -> np.ndarray:
     """(nt, npoints, 3) table of (eta, S, dS/dxi) at the points ``xi`` [m] of the
@@ -167,18 +209,7 @@ def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.f
     X = x_i on the ship's axis (Y = 0) has xi = x_i cos(beta): the values equal
     :func:`station_wave_table`'s there (dS/dxi = -sum a k^2 cos psi).
     """
-    amp = np.asarray(amp, dtype=float)
-    omega = np.asarray(omega, float)
-    phase = np.asarray(phase, float)
-    xi = np.asarray(xi, float)
-    k = omega**2 / G
-    we = encounter_frequency(omega, speed, heading_deg) - k * drift
-    t_first = float(times[0]) if len(times) else 0.0
-    coef = np.empty((2 * len(amp), 3 * len(xi)), dtype=dtype)
-    # equally spaced points (the 6-DOF tables): phasor recurrence along the line, as in time
-    uniform = len(xi) > 2 and bool(np.allclose(np.diff(xi), xi[1] - xi[0], rtol=1e-12, atol=0.0))
-    _line_coefficients(amp, k, phase - k * drift * t_first, xi, uniform, coef)
-    return _time_series_product(we, times, coef, 3)
+    return LineWaves(amp, omega, phase, heading_deg, speed).table(xi, times, dtype, drift)
 
 
 def regular(height: float, wavelength: float):
