@@ -187,7 +187,8 @@ COMMANDS: dict[str, Command] = {
                     (("--figures",), {"help": "folder for <ship>_dsa_map.png and <ship>_dsa_polar.png"}), HYDRO),
                    lambda a: steps.run_dsa(a.ship, a.criteria, _pipeline(a)["dsa"], a.output,
                                            {k: str(Path(a.figures) / f"{Path(a.ship).stem}_dsa_{k}.png")
-                                            for k in ("map", "polar")} if a.figures else None, a.hydro)),
+                                            for k in ("map", "polar")} if a.figures else None, a.hydro,
+                                           overrides=_pipeline(a)["criteria"].get("overrides"))),
     "validate-criteria": Command("criteria validation checks (box barge closed forms) → NetCDF",
                                  (SHIP, (("--criteria",), {"required": True, "help": "criteria step NetCDF"}), OUT),
                                  lambda a: steps.run_validate_criteria(a.ship, a.criteria, a.output)),

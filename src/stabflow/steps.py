@@ -271,16 +271,18 @@ def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None,
 
 
 def run_dsa(ship_yaml, criteria_nc, cfg: dict, out_nc, figures: dict | None = None, hydro_nc=None,
-            progress: bool = True) -> xr.Dataset:
+            progress: bool = True, overrides=None) -> xr.Dataset:
     """dsa step: direct stability assessment of one ship over the scatter table → NetCDF (+ the
-    contribution map and the operational polar)."""
+    contribution map and the operational polar); ``overrides``: the criteria override file (the
+    pipeline's ``criteria.overrides``), as the criteria step reads it."""
     from stabflow.criteria.dsa_run import assess_dsa
+    from stabflow.criteria.standards import Standards
     from stabflow.io import write_netcdf
     from stabflow.plots.criteria import dsa_figures
 
     ship = load_ship(ship_yaml)
     crit = _open_optional(criteria_nc)
-    ds = assess_dsa(ship, crit, cfg, _open_optional(hydro_nc), progress=progress)
+    ds = assess_dsa(ship, crit, cfg, _open_optional(hydro_nc), std=Standards(overrides), progress=progress)
     import logging
 
     logging.getLogger(__name__).info("dsa %s: CPU seconds %s", ship.name, ds.encoding.get("cpu"))

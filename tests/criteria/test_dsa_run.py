@@ -207,3 +207,42 @@ def test_a_lower_acceleration_limit_adds_failures(small, tmp_path):
     assert low.lateral_sigma.values[j] > low.lateral_sigma.values[i] > 0
     assert "lateral acceleration beyond 1.5 m/s2" in low.attrs["row_criterion"]
     assert ACC_KEY not in low.attrs["row_reason"]
+
+
+def test_the_dsa_step_reads_the_override_file(small, tmp_path):
+    """The dsa step (as the pipeline's rule and the CLI call it) applies the criteria override file
+    as the criteria step does: the override's lateral-acceleration limit is the one the row judges
+    by, and the file's entries are recorded in the results (``standards_overridden``); without the
+    file, "none" and the sourced 9.81 m/s2."""
+    from stabflow.criteria.dsa_run import ACC_KEY
+    from stabflow.steps import run_dsa
+
+    ship, base = small
+    assert base.attrs["standards_overridden"] == "none"
+    assert "lateral acceleration beyond 9.81 m/s2" in base.attrs["row_criterion"]
+    crit = tmp_path / "crit.nc"
+    CRIT.to_netcdf(crit)
+    p = tmp_path / "over.yaml"
+    p.write_text("criteria_overrides:\n"
+                 f"  - {{key: {ACC_KEY}, value: 1.5, source: 'test document 3.1'}}\n")
+    out = run_dsa(SHIPS / "barge.yaml", crit, CFG, tmp_path / "dsa.nc", progress=False, overrides=p)
+    assert "lateral acceleration beyond 1.5 m/s2" in out.attrs["row_criterion"]
+    assert ACC_KEY in out.attrs["standards_overridden"] and "test document 3.1" in out.attrs["standards_overridden"]
+    on_disk = xr.open_dataset(tmp_path / "dsa.nc")
+    assert on_disk.attrs["standards_overridden"] == out.attrs["standards_overridden"]
+    on_disk.close()
+
+
+def test_no_cell_interval_is_a_bare_zero(small):
+    """Every cell carries a positive upper bound: counted cells their Poisson bound, screened ones
+    their Gaussian bound, or ``SCREEN_FLOOR`` where its exp() underflows (calm cells of the small
+    barge assessment: roll sigma well below 1/38 of the failure angle)."""
+    _, out = small
+    hi = out.cell_rate_hi.values
+    assert np.all(hi > 0)
+    m = out.method.values.astype(str)
+    scr = m == "screened"
+    assert np.all(hi[scr] >= dsa_run.SCREEN_FLOOR)
+    floored = scr & (hi == dsa_run.SCREEN_FLOOR)
+    assert floored.any()  # the underflow case is exercised here
+    assert np.all(out.roll_sigma.values[floored] < float(out.failure_angle) / 38.0)

@@ -12,6 +12,7 @@ rule dsa:
         polar=f"{RESULTS}/criteria/{{ship}}_dsa_polar.png",
     params:
         cfg=config["dsa"],
+        overrides=config["criteria"].get("overrides"),
     log:
         f"{RESULTS}/logs/dsa/{{ship}}.log",
     benchmark:

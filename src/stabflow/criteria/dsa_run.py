@@ -21,7 +21,8 @@ Per cell, in order:
    nu_hi = 2 nu_0 exp(-phi_f^2 / (2 (k sigma)^2)) with nu_0 the run's zero up-crossing rate, at least
    1 / T_roll (both sides of the roll), is the cell's bound (a heuristic); below ``screen.rate``
    [1/s] (and no roll beyond half the failure angle in the run) the cell is *screened*: rate = the
-   Rice rate with the run's sigma, bounds [0, nu_hi]; with an acceleration limit the same bound of
+   Rice rate with the run's sigma, bounds [0, nu_hi] (nu_hi at least ``SCREEN_FLOOR``, where the
+   Gaussian tail underflows); with an acceleration limit the same bound of
    the acceleration (its own sigma and zero up-crossing rate) is added, and its run must stay below
    half the limit. Head and following seas (within
    ``screen.parametric_deg``) are never screened: roll there is parametric, not Gaussian; their
@@ -59,6 +60,9 @@ ACC_KEY = "sgisc.direct_stability_assessment.lateral_acceleration_limit"
 THRESHOLD_SIGMA = 3.5
 #: degrees of freedom needed before a measured count dispersion is used (stabflow's choice)
 MIN_DISPERSION_DOF = 10
+#: the smallest upper bound [1/s] a screened cell carries (the smallest positive normal double): its
+#: Gaussian (Rice) bound is kept where it is larger, this where exp() underflowed to 0
+SCREEN_FLOOR = float(np.finfo(float).tiny)
 
 
 def acceleration_limit(std: Standards) -> float | None:
@@ -300,7 +304,11 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
             if lateral is not None:
                 asig[i] = sides[1][2]
             if bound < scr["rate"] and calm:
-                method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = "screened", rice(1.0), 0.0, bound, s, float(es["roll_max"].max())
+                # a bound below the smallest positive double (a calm cell: the Gaussian tail's exp()
+                # underflows to 0) is kept as that double, so that the upper bound stays an upper
+                # bound and no cell's interval is a bare [0, 0]
+                method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = ("screened", rice(1.0), 0.0, max(bound, SCREEN_FLOOR),
+                                                                   s, float(es["roll_max"].max()))
                 continue
         a = time.process_time()
         s = float(es["roll_std"]) if es is not None else 1.0
@@ -423,6 +431,7 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     out.encoding.update(cells.encoding)
     out.attrs["count_dispersion_used"] = used
     out.attrs.update(cells.attrs, failure_angle_governed_by=governs, failure_angle_source=std.get(FAIL_KEY).cite(),
+                     standards_overridden="; ".join(std.overrides_summary()) or "none",
                      row_criterion=row.criterion, row_value=row.value,
                      row_limit=math.nan if row.limit is None else row.limit, row_verdict=row.verdict,
                      row_reason=row.reason, row_source=row.source,

@@ -14,13 +14,18 @@ from stabflow.hydrostatics.statics import equilibrium
 
 
 def deck_edges(sec: Sections) -> np.ndarray:
-    """Deck-edge point (x, y, z) of every station [m]: among the contour points at least half as
-    far out as the widest, the highest (the outermost of equal height)."""
+    """Deck-edge point (x, y, z) of every station [m]: among the contour points in the upper half of
+    the section's height, those at least half as far out as the widest of them, the highest (the
+    outermost of equal height). (The upper half keeps a bulbous bow's station, whose bulb is wider
+    than the stem above it, from taking a point on the bulb for its deck edge. A wave-piercing bow
+    whose sides close to the centreline above a knuckle, as the DTMB 5415 tumblehome's forward of
+    x = 59 m, gives the knuckle: 0.35 m above that ship's waterline, immersed at 7.7 degree of heel.)"""
     out = np.empty((len(sec.x), 3))
     for i in range(len(sec.x)):
         n = sec.n[i]
         y, z = sec.y[i, :n], sec.z[i, :n]
-        cand = np.flatnonzero(y >= 0.5 * y.max())
+        upper = z >= 0.5 * (z.min() + z.max())
+        cand = np.flatnonzero(upper & (y >= 0.5 * y[upper].max()))
         j = cand[np.lexsort((-y[cand], -z[cand]))[0]]
         out[i] = sec.x[i], y[j], z[j]
     return out
