@@ -246,3 +246,35 @@ def test_no_cell_interval_is_a_bare_zero(small):
     floored = scr & (hi == dsa_run.SCREEN_FLOOR)
     assert floored.any()  # the underflow case is exercised here
     assert np.all(out.roll_sigma.values[floored] < float(out.failure_angle) / 38.0)
+
+
+def _peaks_ensemble(seed, hours, sigma=2.0, period=10.0):
+    """A stand-in for a zero-failure cell's ensemble: one record of ``hours`` with a roll peak every
+    ``period`` s, Rayleigh-distributed with scale ``sigma`` [degree] and alternating in sign."""
+    rng = np.random.default_rng(seed)
+    n = int(hours * 3600 / period)
+    v = sigma * np.sqrt(-2 * np.log(rng.uniform(size=n))) * np.where(np.arange(n) % 2, -1.0, 1.0)
+    return xr.Dataset({"peak_record": ("peak", np.zeros(n, np.int64)), "peak_time": ("peak", period * np.arange(n)),
+                       "peak_value": ("peak", v), "capsized": ("record", [False]), "capsize_time": ("record", [np.nan]),
+                       "exposure_hours": hours, "roll_std": sigma},
+                      coords={"record": [0]})
+
+
+def test_zero_count_cells_are_extrapolated_from_a_lower_threshold():
+    """A 20-min zero-failure cell (Rayleigh roll peaks, sigma 2 degree): too few peaks beyond 3.5 sigma
+    to fit, so the tail fit runs from 3.0 or 2.5 sigma and gives a rate at the failure angle (40
+    degree, 20 sigma) inside its profile-likelihood interval, with an upper bound far below the
+    Poisson bound of a zero count (3.69 per exposure); a peak floor above 2.5 sigma leaves it
+    unfitted (NaN: the zero count then stays counted); an 8-hour cell fits at 3.5 sigma."""
+    from stabflow.statistics.extremes import MIN_EXCEEDANCES
+
+    short = _peaks_ensemble(1, 1 / 3)
+    assert np.sum(np.abs(short.peak_value.values) > 3.5 * 2.0) < MIN_EXCEEDANCES
+    r, lo, hi, used = dsa_run._extrapolate(short, 40.0, 0.05, 10.0)
+    assert used[0] in (3.0, 2.5) and math.isnan(used[1])
+    assert 0.0 <= lo <= r <= hi < 3.69 / 1200.0
+    *rr, used = dsa_run._extrapolate(short, 40.0, 0.05, 10.0, floors=(2.6 * 2.0, 0.0))
+    assert all(math.isnan(x) for x in rr) and math.isnan(used[0])
+    long = _peaks_ensemble(2, 8.0)
+    r, lo, hi, used = dsa_run._extrapolate(long, 40.0, 0.05, 10.0)
+    assert used[0] == 3.5 and 0.0 <= lo <= r <= hi

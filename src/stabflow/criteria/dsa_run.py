@@ -31,9 +31,11 @@ Per cell, in order:
    exceedances of the failure angle (crossings of +-phi_f, and of +-the acceleration limit, closer
    than the decorrelation time of the cell's roll, at least one natural roll period, are one
    failure; a capsize is one) -> *counted*. With none counted, the rate of |roll| peaks beyond phi_f
-   from a Poisson-GPD fit over 3.5 roll sigma (:mod:`stabflow.statistics.extremes`,
-   profile-likelihood interval) -> *extrapolated*; with an acceleration limit, plus the same fit of
-   |acceleration| peaks over 3.5 of its sigma (the sum bounds the rate of either failure from above;
+   from a Poisson-GPD fit over 3.5 roll sigma, or 3.0 or 2.5 where fewer declustered peaks than a
+   fit needs exceed it (``THRESHOLD_SIGMAS``; :mod:`stabflow.statistics.extremes`,
+   profile-likelihood interval; not taken when its upper bound is 0) -> *extrapolated*; with an
+   acceleration limit, plus the same fit of
+   |acceleration| peaks over 3.5 (3.0, 2.5) of its sigma (the sum bounds the rate of either failure from above;
    the interval runs from the larger lower bound to the sum of the upper bounds). When a tail has too
    few exceedances to fit, the zero count stays *counted* (its Poisson upper bound enters the
    interval).
@@ -56,8 +58,13 @@ from stabflow.io import annotate
 
 FAIL_KEY = "sgisc.direct_stability_assessment.failure_roll_angle_deg"
 ACC_KEY = "sgisc.direct_stability_assessment.lateral_acceleration_limit"
-#: POT threshold of the zero-count cells, in roll sigma (the extremes step's documented default)
-THRESHOLD_SIGMA = 3.5
+#: POT thresholds of the zero-count cells, in the run's sigma, highest first: the extremes step's
+#: documented default 3.5, then lower ones while fewer than ``extremes.MIN_EXCEEDANCES`` declustered
+#: peaks exceed it. A cell's short records rarely reach 3.5 sigma (a 20-min record has about 120 roll
+#: peaks, of which a Rayleigh tail puts 0.3 beyond 3.5 sigma and 5 beyond 2.5): with 3.5 alone the
+#: run of 2026-12-04 extrapolated none of the 7 ships' 194-326 zero-count cells. None below the run's
+#: peak floor (peaks under it are not kept).
+THRESHOLD_SIGMAS = (3.5, 3.0, 2.5)
 #: degrees of freedom needed before a measured count dispersion is used (stabflow's choice)
 MIN_DISPERSION_DOF = 10
 #: the smallest upper bound [1/s] a screened cell carries (the smallest positive normal double): its
@@ -205,11 +212,14 @@ def zero_crossing_rate(ens: xr.Dataset, roll_period: float) -> float:
     return 1.0 / roll_period
 
 
-def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float, tau: float):
+def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float, tau: float, floors=(0.0, 0.0)):
     """(rate, lo, hi) [1/s] of declustered |roll| peaks beyond phi_f (window ``tau`` [s], as the
-    counted failures) from a Poisson-GPD fit (NaN when too few exceed the threshold); with the
-    run's lateral-acceleration peaks, plus the same fit of |acceleration| beyond its first limit:
-    (rate_roll + rate_acc, max(lo_roll, lo_acc), hi_roll + hi_acc) (NaN when either fit fails)."""
+    counted failures) from a Poisson-GPD fit over the highest of ``THRESHOLD_SIGMAS`` x the run's
+    sigma that enough peaks exceed and that is not below the run's peak floor (``floors``: roll
+    [degree], acceleration [m/s2]); with the run's lateral-acceleration peaks, plus the same fit of
+    |acceleration| beyond its first limit: (rate_roll + rate_acc, max(lo_roll, lo_acc), hi_roll +
+    hi_acc). Returns those and the thresholds used (in sigma; roll, then acceleration or NaN); the
+    rates are NaN when a fit has too few peaks at every threshold."""
     from stabflow.statistics.extremes import block_estimates
 
     recs = ens["record"].values
@@ -218,15 +228,22 @@ def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float, tau: float):
     series = [("peak", "roll_std", phi_f)]
     if "lateral_peak_value" in ens:
         series.append(("lateral_peak", "lateral_acceleration_std", float(ens["lateral_limit"][0])))
-    out = []
-    for name, sd, level in series:
-        R, LO, HI, *_ = block_estimates(ens[f"{name}_record"].values, ens[f"{name}_time"].values.astype(float),
-                                        np.abs(ens[f"{name}_value"].values.astype(float)), recs[capd],
-                                        ens["capsize_time"].values[capd], recs, hours, [THRESHOLD_SIGMA * float(ens[sd])],
-                                        [level], tau, alpha, 0)
-        out.append((R[0, 0] / 3600.0, LO[0, 0] / 3600.0, HI[0, 0] / 3600.0))
+    out, used = [], [math.nan, math.nan]
+    for j, (name, sd, level) in enumerate(series):
+        est = (math.nan, math.nan, math.nan)
+        for m in THRESHOLD_SIGMAS:
+            u = m * float(ens[sd])
+            if u < floors[j]:
+                break
+            R, LO, HI, *_ = block_estimates(ens[f"{name}_record"].values, ens[f"{name}_time"].values.astype(float),
+                                            np.abs(ens[f"{name}_value"].values.astype(float)), recs[capd],
+                                            ens["capsize_time"].values[capd], recs, hours, [u], [level], tau, alpha, 0)
+            if np.isfinite(R[0, 0]):
+                est, used[j] = (R[0, 0] / 3600.0, LO[0, 0] / 3600.0, HI[0, 0] / 3600.0), m
+                break
+        out.append(est)
     r, lo, hi = (np.array(x) for x in zip(*out))
-    return float(r.sum()), float(lo.max()), float(hi.sum())
+    return float(r.sum()), float(lo.max()), float(hi.sum()), used
 
 
 def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Dataset | None = None,
@@ -265,6 +282,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     k = np.full(n, -1, np.int64)
     T = np.full(n, np.nan)
     r, lo, hi, sig, rmax, asig = (np.full(n, np.nan) for _ in range(6))
+    thr = np.full((n, 2), np.nan)  # the extrapolated cells' tail thresholds [sigma]: roll, acceleration
     scr = cfg["screen"]
     t_screen = t_sim = 0.0
     # grid indices of each cell (its seeds do not depend on the order of the cells)
@@ -331,9 +349,13 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
             weights.append(float(c.probability) / T[i])
         method[i] = "counted"
         if k[i] == 0:
-            rr = _extrapolate(ens, phi_f, float(cfg["alpha"]), window)
-            if all(np.isfinite(rr)):
+            floors = (max(0.5, 2.0 * s), 0.0 if lat is None else lat["peak_floor"])  # as the condition's
+            *rr, used = _extrapolate(ens, phi_f, float(cfg["alpha"]), window, floors)
+            # a fit whose upper bound is 0 (its tail ends below the failure angle even at the
+            # interval's edge, from a handful of peaks) is not taken: the zero count's Poisson bound stays
+            if all(np.isfinite(rr)) and rr[2] > 0.0:
                 method[i], (r[i], lo[i], hi[i]) = "extrapolated", rr
+                thr[i] = used
                 k[i] = -1
     cells["method"] = ("cell", method.astype(str))
     cells["failures"] = ("cell", k)
@@ -341,9 +363,14 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
     cells["roll_sigma"] = ("cell", sig, {"units": "degree", "long_name": "roll standard deviation of the cell's run"})
     cells["roll_max_cell"] = ("cell", rmax, {"units": "degree", "long_name": "largest |roll| of the cell's run"})
+    cells["tail_threshold_sigma"] = ("cell", thr[:, 0], {"units": "1", "long_name": "threshold of the extrapolated "
+                                                         "cell's roll tail fit, in the run's roll sigma"})
     if lateral is not None:
         cells["lateral_sigma"] = ("cell", asig, {"units": "m/s2", "long_name": "standard deviation of the lateral "
                                                  "acceleration at the crew location in the cell's run"})
+        cells["lateral_tail_threshold_sigma"] = ("cell", thr[:, 1], {
+            "units": "1", "long_name": "threshold of the extrapolated cell's lateral-acceleration tail fit, in the "
+                                       "run's acceleration sigma"})
     disp, dof = dsa.count_dispersion(per_record, weights)
     if lateral is not None:
         cells.attrs.update(lateral_acceleration_limit=acc_lim, crew_height_above_g=lateral["height"],

@@ -1,0 +1,28 @@
+"""Criteria validation rows (``stabflow.validation.criteria``)."""
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from stabflow.validation.criteria import TOL_ROUTE_DGM, TOL_ROUTE_GMMIN, route_checks
+
+
+def _crit(dgm_plane, dgm_wave, gmmin_plane, gmmin_wave, gm=2.0):
+    names = ["pure loss: GMmin by waterplane inertia at d_L", "pure loss: GMmin on the wave lambda = L, H = SW L",
+             "parametric rolling: delta GM1 / GM by waterplane inertias",
+             "parametric rolling: delta GM / GM on the wave lambda = L (stabflow's direct route)"]
+    return xr.Dataset({"criterion_name": ("criterion", names),
+                       "criterion_value": ("criterion", [gmmin_plane, gmmin_wave, dgm_plane, dgm_wave]), "gm": gm})
+
+
+def test_level1_routes_rows():
+    """The two level-1 routes: delta GM / GM relative to the wave pass's, GMmin per GM0; PASS within
+    the tolerances, FAIL beyond, SKIPPED when a route is NOT EVALUATED (NaN value)."""
+    ok = route_checks(_crit(0.105, 0.10, 1.0, 1.1))
+    assert [c.status for c in ok] == ["PASS", "PASS"]
+    assert np.isclose(ok[0].value, 0.05) and np.isclose(ok[1].value, -0.05)
+    bad = route_checks(_crit(0.10 * (1 + 2 * TOL_ROUTE_DGM), 0.10, 1.0, 1.0 + 2.0 * 2 * TOL_ROUTE_GMMIN))
+    assert [c.status for c in bad] == ["FAIL", "FAIL"]
+    skipped = route_checks(_crit(math.nan, 0.1, 1.0, 1.0))
+    assert [c.status for c in skipped] == ["SKIPPED", "PASS"]
