@@ -127,6 +127,8 @@ def test_criteria_results_and_chapters(pipeline):
             assert set(d.method.values.astype(str)) <= {"screened", "counted", "extrapolated"}
             assert (d.cell_rate_hi.values > 0).all()  # every cell's upper bound too
         assert "Direct stability assessment" in page
+        # the screening checked by simulating the screened cells (their verdict in the chapter)
+        assert "Checked by simulation" in page and d.attrs["screen_recheck_verdict"] in page
     with xr.open_dataset(pipeline / "validation" / "dsa_linear_criteria.nc") as ds:
         status = dict(zip((str(n) for n in ds.name.values), (str(s) for s in ds.status.values)))
         assert list(status.values())[0] == "PASS"
@@ -144,7 +146,10 @@ def test_criteria_results_and_chapters(pipeline):
         routes = [k for k in status if k.startswith(("level-1 parametric rolling", "level-1 pure loss"))]
         assert len(routes) == 2 and {status[k] for k in routes} == {"FAIL"}
         assert value[routes[0]] == -1.0
-        assert {v for k, v in status.items() if k not in beam + routes} == {"PASS"} and len(status) >= 12
+        # the DSA screening against the screened cells' own simulation (a consistency row)
+        screening = [k for k in status if k.startswith("DSA screening")]
+        assert len(screening) == 1 and status[screening[0]] == "PASS"
+        assert {v for k, v in status.items() if k not in beam + routes} == {"PASS"} and len(status) >= 13
     with xr.open_dataset(pipeline / "validation" / "wigley_criteria.nc") as ds:
         # the Wigley hull's linear beam-sea model against the time domain in the same beam sea:
         # 0.5 deg within 3 % and 5 deg within 10 % (measured -0.44 % and -0.26 %)

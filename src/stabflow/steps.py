@@ -292,14 +292,17 @@ def run_dsa(ship_yaml, criteria_nc, cfg: dict, out_nc, figures: dict | None = No
     return ds
 
 
-def run_validate_criteria(ship_yaml, criteria_nc, out_nc) -> xr.Dataset:
-    """validation of the criteria step (closed forms of the box barge) → NetCDF rows."""
+def run_validate_criteria(ship_yaml, criteria_nc, out_nc, dsa_nc=None) -> xr.Dataset:
+    """validation of the criteria step (closed forms of the box barge, the level-1 routes, the beam-sea
+    model) and of the DSA's screening (``dsa_nc``, the ship's ``_dsa.nc``; None: no DSA for the
+    ship) → NetCDF rows."""
     from stabflow.io import write_netcdf
     from stabflow.validation import checks_dataset
     from stabflow.validation.criteria import criteria_checks
 
     ship = load_ship(ship_yaml)
-    ds = checks_dataset(ship.name, "criteria", criteria_checks(ship, _open_optional(criteria_nc)))
+    ds = checks_dataset(ship.name, "criteria", criteria_checks(ship, _open_optional(criteria_nc),
+                                                                _open_optional(dsa_nc)))
     write_netcdf(ds, out_nc)
     return ds
 

@@ -100,6 +100,32 @@ def test_cells_rates_and_acceleration(trawler):
     assert float(heeled.ea_acceleration_std[0, 0]) == float(ds.ea_acceleration_std[0, 0])
     for phi_w in (30.0, math.inf):
         assert math.isinf(float(bs.beam_sea_cells(b, p, 30.0, phi_w, None, h, [1.0]).ds_failure_rate[0, 0]))
+    # the log10 rates equal the rates' log10 where those are representable
+    for x, lx in ((ds.ds_failure_rate, ds.ds_failure_log10_rate), (ds.ea_exceedance_rate, ds.ea_exceedance_log10_rate),
+                  (heeled.ds_failure_rate, heeled.ds_failure_log10_rate)):
+        ok = np.isfinite(lx.values)
+        assert ok.any()
+        np.testing.assert_allclose(lx.values[ok], np.log10(x.values[ok]), rtol=0, atol=1e-12)
+
+
+def test_log10_rates_keep_what_underflows():
+    """Rice's rate far in the Gaussian tail underflows to 0 as a double; its log10 keeps the order of
+    magnitude (exact: log10(sqrt(m2/m0)/2pi) - a^2/(2 m0 ln 10)), and the long-term sum in log space
+    equals the plain one where that is representable."""
+    from stabflow.criteria.dsa import rice_log10_rate
+    from stabflow.criteria.sea_states import _long_term, _long_term_log10
+
+    m0, m2 = 1e-3, 4e-3
+    assert rice_rate(m0, m2, 2.0) == 0.0
+    assert rice_log10_rate(m0, m2, 2.0) == pytest.approx(math.log10(1 / math.pi) - 2000 / math.log(10.0), rel=1e-14)
+    assert rice_log10_rate(m0, m2, 0.1) == pytest.approx(math.log10(rice_rate(m0, m2, 0.1)), abs=1e-12)
+    assert rice_log10_rate(0.0, 0.0, 1.0) == -math.inf
+    p = xr.DataArray([[0.25, 0.75, np.nan]], dims=("hs", "tz"))
+    lx = xr.DataArray([[-3.0, -5.0, 0.0]], dims=("hs", "tz"))
+    assert _long_term_log10(p, lx) == pytest.approx(math.log10(_long_term(p, 10.0**lx)), abs=1e-12)
+    far = xr.DataArray([[-900.0, -901.0, 0.0]], dims=("hs", "tz"))
+    assert _long_term(p, 10.0**far) == 0.0
+    assert _long_term_log10(p, far) == pytest.approx(-900 + math.log10(0.25 + 0.075), abs=1e-12)
 
 
 def test_band_beyond_the_grid_is_an_error(trawler):

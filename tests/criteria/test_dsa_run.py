@@ -85,10 +85,8 @@ def test_small_assessment(small):
     # a screened cell's bound is below the screening rate and its run stayed below half the failure angle
     assert (cells.cell_rate_hi.values[scr] < CFG["screen"]["rate"]).all()
     cnt = m == "counted"
+    assert scr.any() and cnt.any()  # both kinds occur here (the tail fit is tested on its own below)
     assert (cells.exposure.values[cnt] > 0).all() and (cells.failures.values[cnt] >= 0).all()
-    ext = m == "extrapolated"
-    assert (cells.cell_rate_lo.values[ext] <= cells.cell_rate.values[ext]).all()
-    assert (cells.cell_rate.values[ext] <= cells.cell_rate_hi.values[ext]).all()
     # the roll grows with the sea: the steepest cell rolls more than the mildest
     i, j = int(np.argmin(cells.hs.values / cells.tz.values**2)), int(np.argmax(cells.hs.values / cells.tz.values**2))
     assert cells.roll_sigma.values[j] > cells.roll_sigma.values[i]
@@ -110,9 +108,18 @@ def test_long_term_rate_and_row(small):
     assert "3.1.2" in ds.attrs["row_source"] and "lateral acceleration beyond 9.81 m/s2" in ds.attrs["row_criterion"]
     assert ds.attrs["lateral_acceleration_limit"] == 9.81 and ds.attrs["crew_height_above_g"] == pytest.approx(3.0)
     assert "3.2.1.2" in ds.attrs["lateral_acceleration_source"]
-    assert ds.attrs["screening_changes_less_than_interval"] == int(float(ds.screen_bound) < float(ds.interval_width))
-    # the barge in beam seas up to Hs 5.5 m: failures are counted in some cells, and they carry the rate
+    # the screening checked by simulating the screened cells as the others: every screened cell and
+    # no other was re-simulated; none of them failed nor rolled beyond half the failure angle
     m = ds.method.values.astype(str)
+    rc = ds.recheck_method.values.astype(str)
+    np.testing.assert_array_equal(rc != "none", m == "screened")
+    assert ds.attrs["screen_recheck_cells"] == int((m == "screened").sum()) > 0
+    assert ds.attrs["screen_recheck_failures"] == 0 and (ds.recheck_failures.values[rc == "counted"] == 0).all()
+    assert np.nanmax(ds.recheck_roll_max.values) < 0.5 * float(ds.failure_angle)
+    assert (ds.recheck_rate_hi.values[rc != "none"] > 0).all()
+    assert ds.attrs["screen_recheck_verdict"] == "PASS"
+    assert float(ds.screen_recheck_rate) <= float(ds.interval_width) < float(ds.screen_recheck_rate_hi)
+    # the barge in beam seas up to Hs 5.5 m: failures are counted in some cells, and they carry the rate
     assert (ds.failures.values[m == "counted"] > 0).any()
     assert float(ds.part_share.sel(part="counted")) > 0.5
     # head seas are never screened (parametric roll is not Gaussian); headings 90 and 180 at 2:1 weight
@@ -278,3 +285,33 @@ def test_zero_count_cells_are_extrapolated_from_a_lower_threshold():
     long = _peaks_ensemble(2, 8.0)
     r, lo, hi, used = dsa_run._extrapolate(long, 40.0, 0.05, 10.0)
     assert used[0] == 3.5 and 0.0 <= lo <= r <= hi
+
+
+def test_screening_recheck_verdicts():
+    """The recheck's verdict on synthetic cells: PASS while the screened cells' simulated
+    contribution (sum p r) stays below the simulated cells' interval width, FAIL beyond it;
+    estimates above the screening bound and zero counts without a fit are counted; SKIPPED when
+    nothing was screened or the recheck is off."""
+    yr = 365.25 * 86400.0
+
+    def cells(rates, methods, failures):
+        n = len(rates)
+        return xr.Dataset({"probability": ("cell", np.full(n, 0.1)), "recheck_method": ("cell", methods),
+                           "recheck_rate": ("cell", np.array(rates, float)),
+                           "recheck_rate_hi": ("cell", 2 * np.array(rates, float) + 1e-9),
+                           "recheck_failures": ("cell", np.array(failures)),
+                           "cell_rate_hi": ("cell", np.full(n, 1e-8))})
+
+    ok = cells([0.0, 2e-8, 0.0], ["counted", "extrapolated", "none"], [0, -1, -1])
+    a = dsa_run.screening_recheck(ok, width=1.0)
+    assert a["screen_recheck_verdict"] == "PASS" and a["screen_recheck_cells"] == 2
+    assert a["screen_recheck_above_bound"] == 1 and a["screen_recheck_zero_unfitted"] == 1
+    assert float(ok.screen_recheck_rate) == pytest.approx(0.1 * 2e-8 * yr)
+    bad = cells([1e-4, 0.0], ["counted", "counted"], [3, 0])
+    b = dsa_run.screening_recheck(bad, width=1.0)
+    assert b["screen_recheck_verdict"] == "FAIL" and b["screen_recheck_failures"] == 3
+    assert "3 failures in 2 cells" in b["screen_recheck_reason"]
+    none = cells([0.0], ["none"], [-1])
+    assert dsa_run.screening_recheck(none, 1.0)["screen_recheck_verdict"] == "SKIPPED"
+    assert dsa_run.screening_recheck(none.drop_vars("recheck_method"), 1.0)["screen_recheck_reason"] == \
+        "screen.recheck is off"

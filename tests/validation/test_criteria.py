@@ -26,3 +26,24 @@ def test_level1_routes_rows():
     assert [c.status for c in bad] == ["FAIL", "FAIL"]
     skipped = route_checks(_crit(math.nan, 0.1, 1.0, 1.0))
     assert [c.status for c in skipped] == ["SKIPPED", "PASS"]
+
+
+def test_dsa_screening_row():
+    """The DSA screening row: the screened cells' simulated contribution against the simulated cells'
+    interval width, PASS inside [0, width], FAIL beyond; SKIPPED with the reason when the ship has no
+    DSA or nothing was screened."""
+    from stabflow.validation.criteria import screening_check
+
+    def out(rate, width=10.0, verdict="PASS"):
+        d = xr.Dataset({"screen_recheck_rate": rate, "interval_width": width})
+        d.attrs.update(screen_recheck_verdict=verdict, screen_recheck_cells=5, screen_recheck_failures=2,
+                       screen_recheck_reason="no cell was screened")
+        return d
+
+    ok = screening_check(out(3.0))
+    assert ok.status == "PASS" and ok.value == 3.0 and ok.kind == "consistency" and "5 cells, 2 failures" in ok.check
+    assert screening_check(out(30.0)).status == "FAIL"
+    skipped = screening_check(out(0.0, verdict="SKIPPED"))
+    assert skipped.status == "SKIPPED" and skipped.reason == "no cell was screened"
+    none = screening_check(None)
+    assert none.status == "SKIPPED" and "dsa.ships" in none.reason

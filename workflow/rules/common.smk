@@ -257,6 +257,11 @@ def dsa_ships():
     return config["dsa"]["ships"] if config["dsa"].get("ships") is not None else list(SHIPS)
 
 
+def dsa_of(wildcards):
+    """The ship's DSA file when the DSA runs for it (its screening is validated), else nothing."""
+    return [f"{RESULTS}/criteria/{wildcards.ship}_dsa.nc"] if wildcards.ship in dsa_ships() else []
+
+
 def dsa_hydro(wildcards):
     """Capytaine coefficients for a ship whose DSA dynamics use them."""
     dyn = dict(SHIPS[wildcards.ship].data["dynamics"], **config["dsa"].get("dynamics", {}))

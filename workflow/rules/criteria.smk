@@ -23,10 +23,11 @@ rule criteria:
 
 
 rule validate_criteria:
-    """Criteria of the box barge against closed forms and exact integration (other hulls: SKIPPED with the reason)."""
+    """Criteria of the box barge against closed forms and exact integration (other hulls: SKIPPED with the reason), the level-1 routes, the beam-sea model, the DSA screening against simulation."""
     input:
         ship=ship_yaml,
         criteria=f"{RESULTS}/criteria/{{ship}}.nc",
+        dsa=dsa_of,
     output:
         nc=f"{RESULTS}/validation/{{ship}}_criteria.nc",
     log:

@@ -56,10 +56,12 @@ import xarray as xr
 from scipy.interpolate import CubicSpline
 
 from stabflow.constants import G
-from stabflow.criteria.dsa import band_spectrum, moments, rice_rate, spectrum_band
+from stabflow.criteria.dsa import band_spectrum, moments, rice_log10_rate, rice_rate, spectrum_band
 
 #: sqrt(8 / pi): the stochastic linearisation factor of p |p| for a Gaussian p
 STOCHASTIC = math.sqrt(8.0 / math.pi)
+#: ln 10, for sums of rates kept as log10
+LN10 = math.log(10.0)
 #: wave steepness H / lambda of the regular waves whose FK first harmonic gives the excitation
 EXCITATION_STEEPNESS = 1.0 / 1000.0
 
@@ -197,8 +199,9 @@ def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_d
     w = bsm.omega
     lv = np.asarray(levels, float)
     shape = p.shape
-    sd, tzr, beq, rate, asd = (np.full(shape, np.nan) for _ in range(5))
+    sd, tzr, beq, rate, asd, lrate = (np.full(shape, np.nan) for _ in range(6))
     exc = np.full((len(lv),) + shape, np.nan)
+    lexc = np.full((len(lv),) + shape, np.nan)
     a_lee = math.radians(phi_f_deg - phi_w_deg) if math.isfinite(phi_w_deg) else -math.inf
     a_wind = math.radians(phi_f_deg + phi_w_deg)
     heeled = phi_w_deg != 0.0 and math.isfinite(phi_w_deg)
@@ -219,9 +222,11 @@ def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_d
             if math.isnan(phi_f_deg):
                 rate[i, j] = math.nan
             elif a_lee <= 0:
-                rate[i, j] = math.inf  # the steady heel is at or beyond the failure angle
+                rate[i, j] = lrate[i, j] = math.inf  # the steady heel is at or beyond the failure angle
             else:
                 rate[i, j] = rice_rate(m0, m2, a_lee) + rice_rate(m0, m2, a_wind)
+                lrate[i, j] = np.logaddexp(rice_log10_rate(m0, m2, a_lee) * LN10,
+                                           rice_log10_rate(m0, m2, a_wind) * LN10) / LN10
             # lateral acceleration of the upright ship without wind
             Xa = linearised_response(bsm, S)[0] if heeled else X
             if Xa is None:
@@ -229,8 +234,10 @@ def beam_sea_cells(bsm: BeamSeaModel, p: xr.DataArray, phi_f_deg: float, phi_w_d
             a0, a2 = moments(w, np.abs((G + w**2 * crew_height) * Xa) ** 2 * S)
             asd[i, j] = math.sqrt(a0)
             exc[:, i, j] = [2 * rice_rate(a0, a2, a) for a in lv]
+            lexc[:, i, j] = [math.log10(2.0) + rice_log10_rate(a0, a2, a) for a in lv]
     dims = ("hs", "tz")
     return xr.Dataset({"ds_roll_std": (dims, sd), "ds_roll_period": (dims, tzr), "ds_b44_eq": (dims, beq),
-                       "ds_failure_rate": (dims, rate), "ea_acceleration_std": (dims, asd),
-                       "ea_exceedance_rate": (("ea_level",) + dims, exc)},
+                       "ds_failure_rate": (dims, rate), "ds_failure_log10_rate": (dims, lrate),
+                       "ea_acceleration_std": (dims, asd), "ea_exceedance_rate": (("ea_level",) + dims, exc),
+                       "ea_exceedance_log10_rate": (("ea_level",) + dims, lexc)},
                       coords={"hs": p.hs, "tz": p.tz, "ea_level": lv})

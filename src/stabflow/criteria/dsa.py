@@ -49,6 +49,7 @@ Exact verification
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -325,6 +326,15 @@ def rice_rate(m0: float, m2: float, level: float) -> float:
     if not m0 > 0:
         return 0.0
     return float(np.sqrt(m2 / m0) / (2 * np.pi) * np.exp(-level**2 / (2 * m0)))
+
+
+def rice_log10_rate(m0: float, m2: float, level: float) -> float:
+    """log10 of :func:`rice_rate` computed without exp(), so that a rate far below the smallest
+    double (a calm sea state's Gaussian tail) keeps its order of magnitude instead of underflowing
+    to 0; -inf for a process without variance."""
+    if not m0 > 0:
+        return -math.inf
+    return float((0.5 * math.log(m2 / m0) - math.log(2 * math.pi) - level**2 / (2 * m0)) / math.log(10.0))
 
 
 def rice_upcrossing_rate(omega, S, level: float) -> float:

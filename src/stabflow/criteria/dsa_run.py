@@ -289,6 +289,34 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     idx = {k: np.searchsorted(np.unique(cells[k].values), cells[k].values) for k in ("hs", "tz", "heading", "speed_kn")}
     parametric = float(scr["parametric_deg"])
     per_record, weights = [], []
+    recheck = bool(scr.get("recheck", True))
+    # the screened cells simulated as the others (their own seeds), to check the screening; kept
+    # beside the cells, never in the long-term rate
+    rc_method = np.full(n, "none", object)
+    rc_k = np.full(n, -1, np.int64)
+    rc_r, rc_lo, rc_hi, rc_max, rc_T = (np.full(n, np.nan) for _ in range(5))
+    t_recheck = 0.0
+
+    def simulate(model, cf, s, lat):
+        """(method, failures, exposure [s], rate, lo, hi [1/s], thresholds, records' counts or None,
+        dataset) of one simulated cell: declustered failures counted, a zero count extrapolated."""
+        ens = run_cell(model, cf)
+        T = float(ens["exposure_hours"]) * 3600.0
+        # declustering window: the decorrelation time of the cell's roll (as the extremes step), at
+        # least one natural roll period; the same for the counted failures and the tail fit
+        window = max(model.roll_period, decorrelation_time(ens["roll_autocorrelation"]))
+        per = failures_per_record(ens, window)
+        k = int(per.sum())
+        per = None if int(ens["capsize_count"]) else per  # records of equal length only
+        if k == 0:
+            floors = (max(0.5, 2.0 * s), 0.0 if lat is None else lat["peak_floor"])  # as the condition's
+            *rr, used = _extrapolate(ens, phi_f, float(cfg["alpha"]), window, floors)
+            # a fit whose upper bound is 0 (its tail ends below the failure angle even at the
+            # interval's edge, from a handful of peaks) is not taken: the zero count's Poisson bound stays
+            if all(np.isfinite(rr)) and rr[2] > 0.0:
+                return "extrapolated", -1, T, *rr, used, per, ens
+        return "counted", k, T, np.nan, np.nan, np.nan, [np.nan, np.nan], per, ens
+
     for i in tqdm(range(n), desc=f"{ship.name} DSA cells", disable=not progress, mininterval=10):
         c = cells.isel(cell=i)
         key = (float(c.heading), float(c.speed_kn))
@@ -327,36 +355,29 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                 # bound and no cell's interval is a bare [0, 0]
                 method[i], r[i], lo[i], hi[i], sig[i], rmax[i] = ("screened", rice(1.0), 0.0, max(bound, SCREEN_FLOOR),
                                                                    s, float(es["roll_max"].max()))
+                if recheck:
+                    a = time.process_time()
+                    lat = None if lateral is None else dict(lateral, peak_floor=2.0 * asig[i])
+                    cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"],
+                                   cell_seed(cfg["seed"], *ix, 2), phi_f, max(0.5, 2.0 * s), lat)
+                    rc_method[i], rc_k[i], rc_T[i], rc_r[i], rc_lo[i], rc_hi[i], _, _, ens = simulate(model, cf, s, lat)
+                    rc_max[i] = float(ens["roll_max"].max())
+                    t_recheck += time.process_time() - a
                 continue
         a = time.process_time()
         s = float(es["roll_std"]) if es is not None else 1.0
         lat = None if lateral is None else dict(lateral, peak_floor=2.0 * asig[i] if np.isfinite(asig[i]) else 0.0)
         cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"],
                        cell_seed(cfg["seed"], *ix, 1), phi_f, max(0.5, 2.0 * s), lat)
-        ens = run_cell(model if gaussian else with_initial_heel(model, float(cfg["initial_heel_deg"])), cf)
+        method[i], k[i], T[i], r[i], lo[i], hi[i], thr[i], per, ens = simulate(
+            model if gaussian else with_initial_heel(model, float(cfg["initial_heel_deg"])), cf, s, lat)
         t_sim += time.process_time() - a
         sig[i], rmax[i] = float(ens["roll_std"]), float(ens["roll_max"].max())
         if lateral is not None:
             asig[i] = float(ens["lateral_acceleration_std"])
-        T[i] = float(ens["exposure_hours"]) * 3600.0
-        # declustering window: the decorrelation time of the cell's roll (as the extremes step), at
-        # least one natural roll period; the same for the counted failures and the tail fit
-        window = max(model.roll_period, decorrelation_time(ens["roll_autocorrelation"]))
-        per = failures_per_record(ens, window)
-        k[i] = int(per.sum())
-        if not int(ens["capsize_count"]):  # records of equal length only
+        if per is not None:
             per_record.append(per)
             weights.append(float(c.probability) / T[i])
-        method[i] = "counted"
-        if k[i] == 0:
-            floors = (max(0.5, 2.0 * s), 0.0 if lat is None else lat["peak_floor"])  # as the condition's
-            *rr, used = _extrapolate(ens, phi_f, float(cfg["alpha"]), window, floors)
-            # a fit whose upper bound is 0 (its tail ends below the failure angle even at the
-            # interval's edge, from a handful of peaks) is not taken: the zero count's Poisson bound stays
-            if all(np.isfinite(rr)) and rr[2] > 0.0:
-                method[i], (r[i], lo[i], hi[i]) = "extrapolated", rr
-                thr[i] = used
-                k[i] = -1
     cells["method"] = ("cell", method.astype(str))
     cells["failures"] = ("cell", k)
     cells["exposure"] = ("cell", T)
@@ -365,6 +386,23 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     cells["roll_max_cell"] = ("cell", rmax, {"units": "degree", "long_name": "largest |roll| of the cell's run"})
     cells["tail_threshold_sigma"] = ("cell", thr[:, 0], {"units": "1", "long_name": "threshold of the extrapolated "
                                                          "cell's roll tail fit, in the run's roll sigma"})
+    if recheck:
+        cells["recheck_method"] = ("cell", rc_method.astype(str), {
+            "long_name": "the screened cell simulated as the others: counted or extrapolated (none: not screened)"})
+        cells["recheck_failures"] = ("cell", rc_k, {"units": "1", "long_name": "declustered failures of the screened "
+                                                    "cell's simulation (-1: extrapolated or not screened)"})
+        # a counted recheck's rate is its failures over its exposure, its interval Garwood's (as the
+        # counted cells': stabflow.criteria.dsa.long_term_rate)
+        from stabflow.statistics.splittime import poisson_interval
+
+        for j in np.nonzero(rc_method == "counted")[0]:
+            rc_r[j], rc_lo[j], rc_hi[j] = poisson_interval(int(rc_k[j]), rc_T[j], float(cfg["alpha"]))  # per second
+        for name, x, what in (("recheck_rate", rc_r, "failure rate"), ("recheck_rate_lo", rc_lo, "lower bound"),
+                              ("recheck_rate_hi", rc_hi, "upper bound")):
+            cells[name] = ("cell", x, {"units": "1/s", "long_name": f"{what} of the screened cell's simulation (counted: "
+                                       "failures / exposure; extrapolated: the tail fit's)"})
+        cells["recheck_roll_max"] = ("cell", rc_max, {"units": "degree",
+                                                      "long_name": "largest |roll| of the screened cell's simulation"})
     if lateral is not None:
         cells["lateral_sigma"] = ("cell", asig, {"units": "m/s2", "long_name": "standard deviation of the lateral "
                                                  "acceleration at the crew location in the cell's run"})
@@ -385,7 +423,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                                  + f"{parametric:g} deg of head and following seas (records there start from "
                                  + f"{float(cfg['initial_heel_deg']):g} deg heel): a heuristic, not a proven bound")
     # CPU seconds: for the log and the benchmark, not written (the file must not change between runs)
-    cells.encoding["cpu"] = {"build": t_build, "screen": t_screen, "simulate": t_sim, "total": time.process_time() - t0}
+    cells.encoding["cpu"] = {"build": t_build, "screen": t_screen, "simulate": t_sim, "recheck": t_recheck, "total": time.process_time() - t0}
     return annotate(cells)
 
 
@@ -429,6 +467,7 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     out["screen_bound"] = ((), bound, {"units": "1/year", "long_name": "upper bound of the screened cells' contribution"})
     out["interval_width"] = ((), width, {"units": "1/year", "long_name": "width of the simulated cells' interval"})
     out["failure_angle"] = ((), phi_f, {"units": "degree", "long_name": "failure roll angle"})
+    recheck = screening_recheck(out, width)
     acc_lim = acceleration_limit(std)
     what = "roll beyond the failure angle" + ("" if acc_lim is None else
                                                f" or lateral acceleration beyond {acc_lim:g} m/s2 at the crew location")
@@ -463,5 +502,43 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
                      row_limit=math.nan if row.limit is None else row.limit, row_verdict=row.verdict,
                      row_reason=row.reason, row_source=row.source,
                      interval=lt.attrs["interval"], alpha=float(cfg["alpha"]),
-                     screening_changes_less_than_interval=int(bound < width))
+                     screening_changes_less_than_interval=int(bound < width), **recheck)
     return out
+
+
+def screening_recheck(out: xr.Dataset, width: float) -> dict:
+    """The screening checked by simulation (``screen.recheck``): the screened cells simulated as the
+    others (their own seeds) give a second rate for them, by a different method than the Gaussian
+    bound. Adds ``screen_recheck_rate`` and ``screen_recheck_rate_hi`` [1/year] (sum p r over the
+    screened cells, estimate and upper bound) to ``out``; returns the attributes: cells rechecked,
+    their failures, how many simulated estimates exceed the screening bound, how many rest on a zero
+    count without a tail fit, and the verdict -- PASS when the rechecked contribution (estimate) is
+    below the simulated cells' interval width ``width`` [1/year] (the issue's test that screening
+    changes the long-term rate by less than its interval), FAIL otherwise, SKIPPED (with the reason)
+    when nothing was screened or the recheck is off."""
+    if "recheck_method" not in out:
+        return {"screen_recheck_verdict": "SKIPPED", "screen_recheck_reason": "screen.recheck is off"}
+    rc = out["recheck_method"].values.astype(str)
+    sel = rc != "none"
+    if not sel.any():
+        return {"screen_recheck_verdict": "SKIPPED", "screen_recheck_reason": "no cell was screened"}
+    p = out["probability"].values[sel]
+    yr = dsa.SECONDS_PER_YEAR
+    r, hi = (out[v].values[sel] for v in ("recheck_rate", "recheck_rate_hi"))
+    est, up = float(np.sum(p * r) * yr), float(np.sum(p * hi) * yr)
+    out["screen_recheck_rate"] = ((), est, {"units": "1/year", "long_name": "the screened cells' contribution by "
+                                            "simulation (estimate)"})
+    out["screen_recheck_rate_hi"] = ((), up, {"units": "1/year", "long_name": "the screened cells' contribution by "
+                                              "simulation (upper bound)"})
+    k = out["recheck_failures"].values[sel]
+    cnt = rc[sel] == "counted"
+    exceed = int((r > out["cell_rate_hi"].values[sel]).sum())
+    verdict = "PASS" if est <= width else "FAIL"
+    return {"screen_recheck_cells": int(sel.sum()), "screen_recheck_failures": int(k[cnt].sum()),
+            "screen_recheck_extrapolated": int((~cnt).sum()), "screen_recheck_zero_unfitted": int((cnt & (k == 0)).sum()),
+            "screen_recheck_above_bound": exceed, "screen_recheck_verdict": verdict,
+            "screen_recheck_reason": (f"the screened cells simulated: {int(k[cnt].sum())} failures in {int(sel.sum())} "
+                                      f"cells, contribution {est:.3g} per year (upper bound {up:.3g}) against the "
+                                      f"simulated cells' interval width {width:.3g}; {exceed} simulated estimates above "
+                                      f"their screening bound; {int((cnt & (k == 0)).sum())} cells rest on a zero count "
+                                      "without a tail fit (estimate 0)")}

@@ -51,6 +51,20 @@ def _long_term(p: xr.DataArray, x: xr.DataArray) -> float:
     return float((p.values[occ] * v).sum())
 
 
+def _long_term_log10(p: xr.DataArray, log10_x: xr.DataArray) -> float:
+    """log10 of sum p x from log10 x, summed in log space (scipy's logsumexp): the order of magnitude
+    of a long-term rate whose every term underflows as a double; +inf, NaN as :func:`_long_term`."""
+    from scipy.special import logsumexp
+
+    occ = _occurs(p)
+    v = log10_x.values[occ]
+    if np.isnan(v).any():
+        return math.nan
+    if np.isposinf(v).any():
+        return math.inf
+    return float(logsumexp(v * math.log(10.0) + np.log(p.values[occ])) / math.log(10.0))
+
+
 def _fraction(p: xr.DataArray, flag: xr.DataArray) -> float:
     """Probability of the occurring sea states where ``flag`` is 1, over those where it is defined
     (NaN: e.g. an effective wave beyond the breaking steepness, reported separately)."""
@@ -172,6 +186,12 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
     ea = np.array([_long_term(p, ds["ea_exceedance_rate"].isel(ea_level=i)) for i in range(ds.sizes["ea_level"])]) * dsa.SECONDS_PER_YEAR
     ds["ds_long_term_rate"] = ((), ds_rate)
     ds["ea_long_term_rate"] = ("ea_level", ea)
+    # the same in log space: where every sea state's Gaussian tail underflows (rates far below 1e-308
+    # per second) the plain sums are 0; their order of magnitude is kept here, never a bare 0
+    year = math.log10(dsa.SECONDS_PER_YEAR)
+    ds["ds_long_term_log10_rate"] = ((), _long_term_log10(p, ds["ds_failure_log10_rate"]) + year)
+    ds["ea_long_term_log10_rate"] = ("ea_level", [_long_term_log10(p, ds["ea_exceedance_log10_rate"].isel(ea_level=i))
+                                                  + year for i in range(ds.sizes["ea_level"])])
     ds["ew_probability_gm_negative"] = ((), frac_gm)
     ds["ew_probability_delta_gm_above_rpr"] = ((), frac_pr)
     ds["ew_probability_breaking"] = ((), p_break)

@@ -47,6 +47,16 @@ def _fmt(v, spec: str | None = None) -> str:
     return f"{v:.4g}" if abs(v) < 1e5 else f"{v:.4e}"
 
 
+def _rate(v, log10) -> str:
+    """A rate as the report prints it: :func:`_fmt` of ``v``, or, where ``v`` underflowed to 0 as a
+    double and its ``log10`` is finite, that order of magnitude ("3.2e-412", from log space)."""
+    v, log10 = float(v), float(log10)
+    if v == 0.0 and np.isfinite(log10):
+        e = int(np.floor(log10))
+        return f"{10.0 ** (log10 - e):.2g}e{e} (below the smallest double: from log space)"
+    return _fmt(v)
+
+
 def _cell(text) -> str:
     """Text safe inside a Markdown table cell (the templates' ``cell`` filter)."""
     return str(text).replace("|", "/").replace("\n", " ")
@@ -329,9 +339,10 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
                 "dgm": float(d.ew_delta_gm_ratio.max()), "p_pr": float(d.ew_probability_delta_gm_above_rpr),
                 "vanish": float(d.ew_heel_vanishing.min()), "gzmax": float(d.ew_gz_max.min()),
                 "roll": float(d.ds_roll_std.max()), "roll1": float(d.ew_roll_1dof.max()),
-                "p_break": float(d.ew_probability_breaking), "rate": float(d.ds_long_term_rate), "tr": float(d.ea_roll_period),
+                "p_break": float(d.ew_probability_breaking), "rate": _rate(d.ds_long_term_rate, d.ds_long_term_log10_rate), "tr": float(d.ea_roll_period),
                 "kacc": float(d.ea_acceleration_per_roll),
-                "acc": [(float(a), float(r)) for a, r in zip(d.ea_level.values, d.ea_long_term_rate.values)],
+                "acc": [(float(a), _rate(r, lr)) for a, r, lr in zip(d.ea_level.values, d.ea_long_term_rate.values,
+                                                                      d.ea_long_term_log10_rate.values)],
                 "figure": _copy(results / "criteria" / f"{name}_sea_states.png", figdir)}
     return _render("criteria.md.j2", name=name, rows=rows, counts=counts, overrides=d.attrs.get("standards_overridden", "none"),
                    seas=seas,
@@ -368,6 +379,8 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             "governs": a["failure_angle_governed_by"], "fsource": a["failure_angle_source"],
             "bound": float(d.screen_bound), "width": float(d.interval_width),
             "ok": bool(a["screening_changes_less_than_interval"]), "covered": float(a["scatter_covered_fraction"]),
+            "recheck": ({"verdict": a["screen_recheck_verdict"], "reason": a["screen_recheck_reason"]}
+                        if "screen_recheck_verdict" in a else None),
             "used": float(a["probability_used"]), "alpha": float(a["alpha"]), "screening": a["screening"],
             "disp": float(a["count_dispersion_estimate"]), "disp_dof": int(a["count_dispersion_dof"]),
             "disp_used": float(a["count_dispersion_used"]),
