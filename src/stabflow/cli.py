@@ -179,9 +179,9 @@ COMMANDS: dict[str, Command] = {
                                            a.hydro)),
     "criteria": Command("IS Code 2008 and second-generation criteria of one ship → NetCDF (with --figure, also "
                         "<ship>_sea_states.png beside it)",
-                        (SHIP, HULL, STATICS, CONFIG, OUT, FIGURE, HYDRO),
+                        (SHIP, HULL, STATICS, CONFIG, OUT, FIGURE, HYDRO, RADIATION),
                         lambda a: steps.run_criteria(a.ship, a.hull, a.statics, _pipeline(a)["criteria"], a.output,
-                                                     a.figure, a.hydro)),
+                                                     a.figure, a.hydro, a.radiation)),
     "dsa": Command("direct stability assessment of one ship over the scatter table → NetCDF",
                    (SHIP, (("--criteria",), {"required": True, "help": "criteria step NetCDF"}), CONFIG, OUT,
                     (("--figures",), {"help": "folder for <ship>_dsa_map.png and <ship>_dsa_polar.png"}), HYDRO),

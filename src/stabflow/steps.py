@@ -252,15 +252,17 @@ def run_roll_decay(ship_yaml, hull_nc, statics_nc, out_nc, fig=None, hydro_nc=No
     return ds
 
 
-def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None, hydro_nc=None) -> xr.Dataset:
+def run_criteria(ship_yaml, hull_nc, statics_nc, cfg: dict, out_nc, figure=None, hydro_nc=None,
+                 radiation_nc=None) -> xr.Dataset:
     """criteria step: IS Code and second-generation rows with every intermediate quantity → NetCDF
-    (+ GZ / weather-criterion and GM-on-the-wave figure, and ``<ship>_sea_states.png`` beside it)."""
+    (+ GZ / weather-criterion and GM-on-the-wave figure, and ``<ship>_sea_states.png`` beside it);
+    ``radiation_nc``: the radiation step's file of a ship with the heave-pitch memory model."""
     from stabflow.criteria.assess import assess
     from stabflow.io import write_netcdf
     from stabflow.plots.criteria import criteria_figure, sea_state_figure
 
     ship, hull, st = _load_statics(ship_yaml, hull_nc, statics_nc)
-    ds = assess(ship, hull, st, cfg, hydro=_open_optional(hydro_nc))
+    ds = assess(ship, hull, st, cfg, hydro=_open_optional(hydro_nc), radiation=_open_optional(radiation_nc))
     if figure:
         criteria_figure(ds, figure, title=f"{ship.name}: IS Code weather criterion and GM on a wave λ = L")
         # the level-2 sea-state figure beside it: <ship>_sea_states.png

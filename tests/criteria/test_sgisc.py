@@ -149,3 +149,35 @@ def test_surf_riding_level2_physics():
     assert (f[:, 1] < f[:, 0]).all() and (f[1] > f[0]).all()
     row = sgisc.surf_riding_level2_row(sr, 0.2, Standards())
     assert row.verdict == "NOT EVALUATED" and "R_SR" in row.reason and f"{f.min():.3f}" in row.note
+    # the trawler keeps the heave-pitch memory model: without the radiation step's file no wave force
+    assert "sr_froude_critical_wave_force" not in sr and "not given" in sr.attrs["sr_wave_force_not_computed"]
+
+
+def test_surf_riding_level2_with_the_mean_wave_force():
+    """With the radiation step's heave-pitch memory (a synthetic passive system here) the grid is
+    computed again with the mean wave-induced surge force: each cell is Melnikov's threshold of the
+    memory model with ``wave_force=True`` (direct call, 1e-12), and below the plain one (in following
+    seas below the celerity the absorbed wave momentum pushes the ship forward); a ship with
+    constant heave-pitch coefficients gets none, saying why."""
+    from stabflow.dynamics.broaching import six_dof_model
+    from stabflow.dynamics.surf_riding import melnikov_threshold
+    from tests.conftest import synthetic_memory_dataset
+
+    trawler = load_ship(SHIPS / "trawler.yaml")
+    st = compute_statics(trawler, build_hull(trawler))
+    L = float(st["lwl"])
+    rad = synthetic_memory_dataset(float(st["lcg"]))
+    cfg = {"wavelength_ratios": [1.0, 2.0], "steepness": [0.03]}
+    sr = sgisc.surf_riding_thresholds(trawler, cfg, L, rad)
+    f, w = sr.sr_froude_critical.values, sr.sr_froude_critical_wave_force.values
+    assert np.isfinite(w).any() and "sr_wave_force_not_computed" not in sr.attrs
+    assert (w[np.isfinite(w)] < f[np.isfinite(w)]).all()
+    i = int(np.argmax(np.isfinite(w[:, 0])))
+    ship = trawler.modified(dynamics={"hydro": "config", "roll_damping": "coefficients"})
+    m = six_dof_model(ship, 0.0, 10.0, tables=(91, 51), radiation=rad)
+    lam = cfg["wavelength_ratios"][i] * L
+    u = melnikov_threshold(m, lam, 0.03 * lam, wave_force=True)
+    assert w[i, 0] == pytest.approx(u / math.sqrt(9.80665 * L), rel=1e-12)
+    barge = load_ship(SHIPS / "barge.yaml")
+    sb = sgisc.surf_riding_thresholds(barge, cfg, 100.0)
+    assert "constant heave-pitch" in sb.attrs.get("sr_wave_force_not_computed", sb.attrs.get("sr_not_computed", ""))

@@ -57,7 +57,7 @@ def keel_area(ship: Ship) -> float:
 
 
 def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standards | None = None,
-           hydro: xr.Dataset | None = None) -> xr.Dataset:
+           hydro: xr.Dataset | None = None, radiation: xr.Dataset | None = None) -> xr.Dataset:
     """Every criterion of the ship: rows along ``criterion`` plus the GZ curve, the weather
     criterion's quantities and the level-1 curves over wave steepness.
 
@@ -67,6 +67,8 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
         ``crest_positions``, ``overrides``: optional override file, ``parametric``: the regular-wave
         cases of :func:`stabflow.criteria.sgisc.parametric_roll_cases`).
     hydro : Capytaine coefficients for ships whose dynamics use them.
+    radiation : the radiation step's heave-pitch coefficients for ships with the memory model (the
+        surf-riding threshold with the mean wave force).
     """
     std = std or Standards(cfg.get("overrides"))
     sec = Sections(hull)
@@ -104,7 +106,7 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     q1.update(midship_coefficient=cm, depth_midship=depth, freeboard_volume_ratio=reserve, rpr=r_pr[0])
     pr = sgisc.parametric_roll_cases(ship, cfg["parametric"], stab.lwl, hydro)
     rows.append(sgisc.parametric_level2_row(pr, std))
-    sr = sgisc.surf_riding_thresholds(ship, cfg["surf_riding"], stab.lwl)
+    sr = sgisc.surf_riding_thresholds(ship, cfg["surf_riding"], stab.lwl, radiation)
     rows.append(sgisc.surf_riding_level2_row(sr, fn, std))
     from stabflow.config import _fill_defaults, schema
 

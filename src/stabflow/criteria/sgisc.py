@@ -288,42 +288,71 @@ def parametric_level2_row(pr: xr.Dataset, std: Standards) -> Row:
                         f"gives {float(pr['pr_roll_3dof'].max()):.1f} deg (results pr_roll_3dof)")
 
 
-def surf_riding_thresholds(ship, cfg: dict, L: float) -> xr.Dataset:
+def surf_riding_thresholds(ship, cfg: dict, L: float, radiation: xr.Dataset | None = None) -> xr.Dataset:
     """Surf-riding level-2 physics: the critical Froude number of Melnikov's method on the surge
     equation (:func:`stabflow.dynamics.surf_riding.melnikov_threshold`, the ship's own resistance
     and Froude-Krylov surge force) in regular following waves over lambda/L x H/lambda. The
     resistance is the 6-DOF model's calm-water resistance (the ship's manoeuvring section, or its
-    defaults: ITTC-57 friction with the form factor); ``L`` [m] the waterline length."""
+    defaults: ITTC-57 friction with the form factor); ``L`` [m] the waterline length.
+
+    For a ship with the heave-pitch memory model (``manoeuvring.heave_pitch_radiation: memory``)
+    and its ``radiation`` step's dataset, the same grid with the mean wave-induced surge force of
+    the heave-pitch response (``wave_force=True``; the broaching step's check shows it is what puts
+    the free ship's threshold 26 % below plain Melnikov's at lambda 42.7 m on the trawler) as
+    ``sr_froude_critical_wave_force``; otherwise ``sr_wave_force_not_computed`` says why (the ship
+    file's constant heave-pitch damping, one frequency's, does not vanish at low encounter frequency
+    and overstates that force)."""
     from stabflow.constants import G
     from stabflow.dynamics.broaching import six_dof_model
+    from stabflow.dynamics.radiation import uses_memory
     from stabflow.dynamics.surf_riding import melnikov_threshold
 
     from stabflow import StabflowError
 
     # the commanded speed only sets the model's thrust, which the threshold does not use; roll
     # damping does not enter the surge equation: the config coefficients stand in for Capytaine/Ikeda
+    memory = uses_memory(ship)
     surge = ship.modified(dynamics={"hydro": "config", "roll_damping": "coefficients"})
+    with_memory = surge.modified()
     # heave and pitch do not enter the surge equation: no heave-pitch memory model (its BEM) for it
     surge.data.get("manoeuvring", {})["heave_pitch_radiation"] = "constant"
     try:
         model = six_dof_model(surge, 0.0, 10.0, tables=(91, 51))
     except StabflowError as e:
         return xr.Dataset(attrs={"sr_not_computed": f"the 6-DOF surge model could not be built: {e}"})
+    models = {"sr_froude_critical": (model, False)}
+    why = None
+    if not memory:
+        why = ("the ship keeps constant heave-pitch coefficients (one frequency's), which overstate the mean wave force "
+               "near the celerity; manoeuvring.heave_pitch_radiation: memory computes it")
+    elif radiation is None:
+        why = "the radiation step's heave-pitch coefficients were not given"
+    else:
+        models["sr_froude_critical_wave_force"] = (six_dof_model(with_memory, 0.0, 10.0, tables=(91, 51),
+                                                                 radiation=radiation), True)
     ratios = np.asarray(cfg["wavelength_ratios"], float)
     steep = np.asarray(cfg["steepness"], float)
-    fn = np.full((len(ratios), len(steep)), np.nan)
-    for i, r in enumerate(ratios):
-        for j, s in enumerate(steep):
-            celerity = math.sqrt(G * r * L / (2 * math.pi))
-            try:
-                u = melnikov_threshold(model, r * L, s * r * L)
-            except ValueError:
-                u = math.nan
-            # no threshold below the celerity (the root sits on the bracket's end): NaN, reported as such
-            fn[i, j] = u / math.sqrt(G * L) if u < 0.999 * celerity else np.nan
-    return xr.Dataset({"sr_froude_critical": (("sr_wavelength_ratio", "sr_steepness"), fn)},
-                      coords={"sr_wavelength_ratio": ratios, "sr_steepness": steep},
-                      attrs={"sr_method": "Melnikov's method on the surge equation (stabflow.dynamics.surf_riding)"})
+    out = {}
+    beyond = 0  # wave cases whose mean wave force exceeds the resistance along the whole orbit
+    for name, (m, wave_force) in models.items():
+        fn = np.full((len(ratios), len(steep)), np.nan)
+        for i, r in enumerate(ratios):
+            for j, s in enumerate(steep):
+                celerity = math.sqrt(G * r * L / (2 * math.pi))
+                try:
+                    u = melnikov_threshold(m, r * L, s * r * L, wave_force=wave_force)
+                except ValueError as e:
+                    beyond += "exceeds the resistance" in str(e)
+                    u = math.nan
+                # no threshold below the celerity (the root sits on the bracket's end): NaN, reported as such
+                fn[i, j] = u / math.sqrt(G * L) if u < 0.999 * celerity else np.nan
+        out[name] = (("sr_wavelength_ratio", "sr_steepness"), fn)
+    attrs = {"sr_method": "Melnikov's method on the surge equation (stabflow.dynamics.surf_riding)"}
+    if why is not None:
+        attrs["sr_wave_force_not_computed"] = why
+    else:
+        attrs["sr_wave_force_exceeds_resistance"] = int(beyond)
+    return xr.Dataset(out, coords={"sr_wavelength_ratio": ratios, "sr_steepness": steep}, attrs=attrs)
 
 
 def surf_riding_level2_row(sr: xr.Dataset, fn: float | None, std: Standards) -> Row:

@@ -319,9 +319,14 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
         l1.update(pl_dl=float(d.l1_pure_loss_d_L), pr_dh=float(d.l1_parametric_d_H), pr_dl=float(d.l1_parametric_d_L),
                   sw_pl=s_pl, sw_pr=s_pr)
     flooding = float(d.flooding_angle)
+    wf = "sr_froude_critical_wave_force" in d
     sr = [{"ratio": float(r), **{f"s{j}": float(d.sr_froude_critical.sel(sr_wavelength_ratio=r).values[j])
-                                 for j in range(d.sizes["sr_steepness"])}}
+                                 for j in range(d.sizes["sr_steepness"])},
+           **{f"w{j}": (float(d.sr_froude_critical_wave_force.sel(sr_wavelength_ratio=r).values[j]) if wf else None)
+              for j in range(d.sizes["sr_steepness"])}}
           for r in d.sr_wavelength_ratio.values] if "sr_froude_critical" in d else []
+    sr_wf = {"on": wf, "why": d.attrs.get("sr_wave_force_not_computed", ""),
+             "beyond": int(d.attrs.get("sr_wave_force_exceeds_resistance", 0))}
     sr_steep = [float(x) for x in d.sr_steepness.values] if "sr_froude_critical" in d else []
     pr = [{"heading": float(h), "fn": float(f), "s": float(x), "ratio": float(d.pr_encounter_ratio.sel(pr_heading=h, pr_froude=f, pr_steepness=x)),
            "one": float(d.pr_roll_1dof.sel(pr_heading=h, pr_froude=f, pr_steepness=x)),
@@ -349,7 +354,7 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
                    figure=_copy(results / "criteria" / f"{name}_criteria.png", figdir), wc=wc,
                    block=float(d.block_coefficient), deck_edge=float(d.deck_edge_immersion),
                    flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1, dsa=dsa,
-                   sr=sr, sr_steep=sr_steep, fn_service=float(d.froude_service),
+                   sr=sr, sr_steep=sr_steep, sr_wf=sr_wf, fn_service=float(d.froude_service),
                    pr=pr, pr_phi0=float(d.attrs.get("pr_phi0_deg", np.nan)), pr_duration=float(d.attrs.get("pr_duration", np.nan)))
 
 
