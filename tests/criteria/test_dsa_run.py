@@ -287,6 +287,38 @@ def test_zero_count_cells_are_extrapolated_from_a_lower_threshold():
     assert used[0] == 3.5 and 0.0 <= lo <= r <= hi
 
 
+def test_a_simulation_overrules_the_screening():
+    """A screened cell whose simulation counts failures, or fits a tail rate above the Gaussian
+    bound, is overruled; a zero count without a fit, or a fitted rate at or below the bound, is not."""
+    assert dsa_run.overrules("counted", 1, np.nan, 1e-9)
+    assert not dsa_run.overrules("counted", 0, 0.0, 1e-9)
+    assert dsa_run.overrules("extrapolated", -1, 2e-9, 1e-9)
+    assert not dsa_run.overrules("extrapolated", -1, 1e-9, 1e-9)
+
+
+def test_overruled_cells_enter_the_rate_as_simulated(small, monkeypatch):
+    """An overruled screened cell carries its simulation into the long-term rate: method, count,
+    exposure, roll sigma and largest roll become the recheck's, the rest of the cells are those of
+    the run without overruling (same seeds). The rule is forced here for every counted recheck (a
+    calm Gaussian barge cell never contradicts its Gaussian bound; on the shipped DTC the default
+    run overrules 17 cells that capsize or pass 40 degree within 20 minutes)."""
+    ship, base = small
+    monkeypatch.setattr(dsa_run, "overrules", lambda method, failures, rate, bound: method == "counted")
+    cells = dsa_run.assess_cells(ship, CFG, 40.0, 100.0, crew_z=10.0)
+    over = cells.screen_overruled.values.astype(bool)
+    was = base.method.values.astype(str) == "screened"
+    np.testing.assert_array_equal(over, was & (base.recheck_method.values.astype(str) == "counted"))
+    assert over.any()
+    assert (cells.method.values.astype(str)[over] == "counted").all()
+    np.testing.assert_array_equal(cells.failures.values[over], base.recheck_failures.values[over])
+    np.testing.assert_array_equal(cells.exposure.values[over], CFG["records"] * CFG["duration"])
+    np.testing.assert_array_equal(cells.roll_max_cell.values[over], base.recheck_roll_max.values[over])
+    assert (cells.roll_sigma.values[over] != base.roll_sigma.values[over]).all()  # the 20-min record's, not the screen's
+    rest = ~over
+    np.testing.assert_array_equal(cells.method.values.astype(str)[rest], base.method.values.astype(str)[rest])
+    np.testing.assert_array_equal(cells.failures.values[rest], base.failures.values[rest])
+
+
 def test_screening_recheck_verdicts():
     """The recheck's verdict on synthetic cells: PASS while the screened cells' simulated
     contribution (sum p r) stays below the simulated cells' interval width, FAIL beyond it;
@@ -296,16 +328,16 @@ def test_screening_recheck_verdicts():
 
     def cells(rates, methods, failures):
         n = len(rates)
+        over = [int(dsa_run.overrules(m, k, r, 1e-8)) for m, k, r in zip(methods, failures, rates)]
         return xr.Dataset({"probability": ("cell", np.full(n, 0.1)), "recheck_method": ("cell", methods),
                            "recheck_rate": ("cell", np.array(rates, float)),
                            "recheck_rate_hi": ("cell", 2 * np.array(rates, float) + 1e-9),
-                           "recheck_failures": ("cell", np.array(failures)),
-                           "cell_rate_hi": ("cell", np.full(n, 1e-8))})
+                           "recheck_failures": ("cell", np.array(failures)), "screen_overruled": ("cell", over)})
 
     ok = cells([0.0, 2e-8, 0.0], ["counted", "extrapolated", "none"], [0, -1, -1])
     a = dsa_run.screening_recheck(ok, width=1.0)
     assert a["screen_recheck_verdict"] == "PASS" and a["screen_recheck_cells"] == 2
-    assert a["screen_recheck_above_bound"] == 1 and a["screen_recheck_zero_unfitted"] == 1
+    assert a["screen_overruled"] == 1 and a["screen_recheck_zero_unfitted"] == 1
     assert float(ok.screen_recheck_rate) == pytest.approx(0.1 * 2e-8 * yr)
     bad = cells([1e-4, 0.0], ["counted", "counted"], [3, 0])
     b = dsa_run.screening_recheck(bad, width=1.0)

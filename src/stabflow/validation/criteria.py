@@ -71,7 +71,8 @@ def screening_check(out: xr.Dataset | None) -> Check:
     if a.get("screen_recheck_verdict", "SKIPPED") == "SKIPPED":
         return Check.not_applicable(name, a.get("screen_recheck_reason", "the DSA results predate the recheck"),
                                     "1/year", ref, kind="consistency")
-    return Check(f"{name} ({a['screen_recheck_cells']} cells, {a['screen_recheck_failures']} failures)",
+    return Check(f"{name} ({a['screen_recheck_cells']} cells, {a['screen_recheck_failures']} failures, "
+                 f"{a.get('screen_overruled', 0)} cells overruled)",
                  float(out["screen_recheck_rate"]), np.nan, "1/year", ref, kind="consistency", lower=0.0,
                  upper=float(out["interval_width"]))
 
