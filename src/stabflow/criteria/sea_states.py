@@ -65,6 +65,17 @@ def _long_term_log10(p: xr.DataArray, log10_x: xr.DataArray) -> float:
     return float(logsumexp(v * math.log(10.0) + np.log(p.values[occ])) / math.log(10.0))
 
 
+def rate_text(value: float, log10: float, spec: str = ".4g") -> str:
+    """A rate as text: ``format(value, spec)``, or, where ``value`` underflowed to 0 as a double and
+    its ``log10`` is finite, that order of magnitude ("4.6e-376", from log space): never a bare 0
+    for a rate that is not 0."""
+    value, log10 = float(value), float(log10)
+    if value == 0.0 and math.isfinite(log10):
+        e = math.floor(log10)
+        return f"{10.0 ** (log10 - e):.2g}e{e} (below the smallest double: from log space)"
+    return format(value, spec)
+
+
 def _fraction(p: xr.DataArray, flag: xr.DataArray) -> float:
     """Probability of the occurring sea states where ``flag`` is 1, over those where it is defined
     (NaN: e.g. an effective wave beyond the breaking steepness, reported separately)."""
@@ -248,7 +259,8 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
                         note=f"the level-1 check is of the weather criterion's kind; {area}"))
     rds = std.get_or_missing(f"{SG}.dead_ship.level_2.RDS0", f"{CIRC}, dead ship level 2")
     rate_txt = ("not computed (no failure angle)" if math.isnan(ds_rate) else "infinite (the steady wind heel reaches the "
-                "failure angle or has no equilibrium)" if math.isinf(ds_rate) else f"{ds_rate:.4g} per year")
+                "failure angle or has no equilibrium)" if math.isinf(ds_rate) else
+                f"{rate_text(ds_rate, float(ds['ds_long_term_log10_rate']))} per year")
     rows.append(against("dead ship condition: long-term failure index C", "SGISC dead ship, level 2", math.nan, "-", rds, "<=",
                         missing=["the circular's exposure time and index C (not read)"],
                         note=f"beam seas without way, linear roll with stochastically linearised damping (a lower estimate: "
@@ -266,7 +278,9 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
                         missing=([] if acc.available else [f"{acc.key} (the acceleration limit)"])
                         + ["the circular's index C (not read)"],
                         note="beam seas without way, upright, at the crew location: rate of |a_y| above "
-                             + ", ".join(f"{a:g} m/s2 {r:.3g}" for a, r in zip(lv, ea)) + " per year over the Rec. 34 table"
+                             + ", ".join(f"{a:g} m/s2 {rate_text(r, lr, '.3g')}"
+                                         for a, r, lr in zip(lv, ea, ds["ea_long_term_log10_rate"].values))
+                             + " per year over the Rec. 34 table"
                              + (f" (the limit {float(acc.value):g} m/s2 from the standards)" if acc.available else "")
                              + f"; largest sigma {_largest(ds['ea_acceleration_std'], p, '.2f', 'm/s2')}"))
     return rows, ds

@@ -50,11 +50,9 @@ def _fmt(v, spec: str | None = None) -> str:
 def _rate(v, log10) -> str:
     """A rate as the report prints it: :func:`_fmt` of ``v``, or, where ``v`` underflowed to 0 as a
     double and its ``log10`` is finite, that order of magnitude ("3.2e-412", from log space)."""
-    v, log10 = float(v), float(log10)
-    if v == 0.0 and np.isfinite(log10):
-        e = int(np.floor(log10))
-        return f"{10.0 ** (log10 - e):.2g}e{e} (below the smallest double: from log space)"
-    return _fmt(v)
+    from stabflow.criteria.sea_states import rate_text
+
+    return rate_text(v, log10) if float(v) == 0.0 else _fmt(v)
 
 
 def _cell(text) -> str:
