@@ -43,8 +43,8 @@ Per cell, in order:
    seeds). Where that simulation contradicts the screening (:func:`overrules`: failures counted,
    or a fitted tail above the Gaussian bound) the cell is *overruled*: it enters the long-term rate
    as simulated (``screen_overruled``). The Gaussian bound misses the failures of strongly
-   nonlinear roll (on the shipped hulls: the DTC's stern-quartering and beam cells, roll sigma
-   3-4 degree, capsizing within 20 minutes; the tumblehome's beam cells). :func:`screening_recheck`
+   nonlinear roll (on the shipped hulls: 16 of the DTC's cells at 60 and 90 degree, roll sigma
+   2-4.4 degree in the screening run, failing within 20 minutes; 3 of the tumblehome's). :func:`screening_recheck`
    judges the screening by the rechecked cells' contribution against the interval's width.
 """
 
