@@ -56,7 +56,9 @@ def main():
           f"screening bound {float(ds.screen_bound):.3g} /year vs interval width {float(ds.interval_width):.3g}")
     cpu = ds.encoding["cpu"]
     print(f"CPU: models {cpu['build']:.1f} s, screening {cpu['screen']:.1f} s, simulation "
-          f"{cpu['simulate']:.1f} s, total {cpu['total']:.1f} s; wall {wall:.1f} s (one process)")
+          f"{cpu['simulate']:.1f} s, recheck of the screened cells {cpu.get('recheck', 0.0):.1f} s, total "
+          f"{cpu['total']:.1f} s; wall {wall:.1f} s (one process)")
+    print(f"recheck: {ds.attrs.get('screen_recheck_verdict')}: {ds.attrs.get('screen_recheck_reason', '')}")
     print(f"screening share of the CPU: {cpu['screen'] / cpu['total']:.2f}; "
           f"two cores (cells independent): about {wall / 2 / 3600:.2f} h")
 
