@@ -13,3 +13,13 @@ def test_rate_prints_an_underflowed_rate_from_log_space():
     assert _rate(2.5e-3, math.log10(2.5e-3)) == _fmt(2.5e-3) == "0.0025"
     assert _rate(0.0, -math.inf) == "0"
     assert _rate(math.inf, math.inf) == "–"
+
+
+def test_rate_text_rounds_the_mantissa_into_its_decade():
+    """A mantissa that rounds up to 10 moves to the next decade (1e-300, not 10e-301); Rice's log10
+    rate keeps NaN as NaN and a process without up-crossings at -inf."""
+    from stabflow.criteria.dsa import rice_log10_rate
+    from stabflow.criteria.sea_states import rate_text
+
+    assert rate_text(0.0, -300.0001).startswith("1e-300 ")
+    assert math.isnan(rice_log10_rate(math.nan, 1.0, 1.0)) and rice_log10_rate(1.0, 0.0, 1.0) == -math.inf

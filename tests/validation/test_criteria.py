@@ -29,20 +29,21 @@ def test_level1_routes_rows():
 
 
 def test_dsa_screening_row():
-    """The DSA screening row: the screened cells' simulated contribution against the simulated cells'
-    interval width, PASS inside [0, width], FAIL beyond; SKIPPED with the reason when the ship has no
-    DSA or nothing was screened."""
+    """The DSA screening row: the upper bound of the cells that stay screened, by simulation, against
+    the simulated cells' interval width, PASS inside [0, width], FAIL beyond (also when the records
+    cannot show it); SKIPPED with the reason when the ship has no DSA or nothing was screened."""
     from stabflow.validation.criteria import screening_check
 
-    def out(rate, width=10.0, verdict="PASS"):
-        d = xr.Dataset({"screen_recheck_rate": rate, "interval_width": width})
+    def out(hi, width=10.0, verdict="PASS"):
+        d = xr.Dataset({"screen_recheck_rate_hi": hi, "interval_width": width})
         d.attrs.update(screen_recheck_verdict=verdict, screen_recheck_cells=5, screen_recheck_failures=2,
-                       screen_recheck_reason="no cell was screened")
+                       screen_overruled_cells=1, screen_recheck_reason="no cell was screened")
         return d
 
     ok = screening_check(out(3.0))
-    assert ok.status == "PASS" and ok.value == 3.0 and ok.kind == "consistency" and "5 cells, 2 failures" in ok.check
-    assert screening_check(out(30.0)).status == "FAIL"
+    assert ok.status == "PASS" and ok.value == 3.0 and ok.kind == "consistency"
+    assert "5 cells, 2 failures, 1 cells overruled" in ok.check
+    assert screening_check(out(30.0, verdict="NOT SHOWN")).status == "FAIL"
     skipped = screening_check(out(0.0, verdict="SKIPPED"))
     assert skipped.status == "SKIPPED" and skipped.reason == "no cell was screened"
     none = screening_check(None)

@@ -257,6 +257,12 @@ def dsa_ships():
     return config["dsa"]["ships"] if config["dsa"].get("ships") is not None else list(SHIPS)
 
 
+def criteria_radiation(wildcards):
+    """The radiation step's file for the criteria step's surf-riding with the mean wave force: for the
+    memory-model ships the radiation rule computes (others: the chapter says it was not given)."""
+    return [f"{RESULTS}/hydro/{wildcards.ship}_radiation.nc"] if wildcards.ship in radiation_ships() else []
+
+
 def dsa_of(wildcards):
     """The ship's DSA file when the DSA runs for it (its screening is validated), else nothing."""
     return [f"{RESULTS}/criteria/{wildcards.ship}_dsa.nc"] if wildcards.ship in dsa_ships() else []

@@ -6,7 +6,7 @@ rule criteria:
         statics=f"{RESULTS}/statics/{{ship}}.nc",
         data=criteria_data(),
         hydro=hydro_first,
-        radiation=broaching_radiation,
+        radiation=criteria_radiation,
     output:
         nc=f"{RESULTS}/criteria/{{ship}}.nc",
         fig=f"{RESULTS}/criteria/{{ship}}_criteria.png",

@@ -331,9 +331,11 @@ def rice_rate(m0: float, m2: float, level: float) -> float:
 def rice_log10_rate(m0: float, m2: float, level: float) -> float:
     """log10 of :func:`rice_rate` computed without exp(), so that a rate far below the smallest
     double (a calm sea state's Gaussian tail) keeps its order of magnitude instead of underflowing
-    to 0; -inf for a process without variance."""
-    if not m0 > 0:
-        return -math.inf
+    to 0; -inf for a process without variance (m0 = 0), NaN for NaN moments, as :func:`rice_rate`."""
+    if math.isnan(m0) or math.isnan(m2):
+        return math.nan
+    if not m0 > 0 or not m2 > 0:
+        return -math.inf  # no variance, or no up-crossings (m2 = 0): rice_rate's 0
     return float((0.5 * math.log(m2 / m0) - math.log(2 * math.pi) - level**2 / (2 * m0)) / math.log(10.0))
 
 

@@ -72,7 +72,10 @@ def rate_text(value: float, log10: float, spec: str = ".4g") -> str:
     value, log10 = float(value), float(log10)
     if value == 0.0 and math.isfinite(log10):
         e = math.floor(log10)
-        return f"{10.0 ** (log10 - e):.2g}e{e} (below the smallest double: from log space)"
+        m = round(10.0 ** (log10 - e), 1)
+        if m >= 10.0:  # the mantissa rounds up to the next decade
+            m, e = m / 10.0, e + 1
+        return f"{m:.2g}e{e} (below the smallest double: from log space)"
     return format(value, spec)
 
 

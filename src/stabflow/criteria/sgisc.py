@@ -328,8 +328,11 @@ def surf_riding_thresholds(ship, cfg: dict, L: float, radiation: xr.Dataset | No
     elif radiation is None:
         why = "the radiation step's heave-pitch coefficients were not given"
     else:
-        models["sr_froude_critical_wave_force"] = (six_dof_model(with_memory, 0.0, 10.0, tables=(91, 51),
-                                                                 radiation=radiation), True)
+        try:
+            models["sr_froude_critical_wave_force"] = (six_dof_model(with_memory, 0.0, 10.0, tables=(91, 51),
+                                                                     radiation=radiation), True)
+        except StabflowError as e:
+            why = f"the 6-DOF model with the heave-pitch memory could not be built: {e}"
     ratios = np.asarray(cfg["wavelength_ratios"], float)
     steep = np.asarray(cfg["steepness"], float)
     out = {}

@@ -383,7 +383,9 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             "bound": float(d.screen_bound), "width": float(d.interval_width),
             "ok": bool(a["screening_changes_less_than_interval"]), "covered": float(a["scatter_covered_fraction"]),
             "recheck": ({"verdict": a["screen_recheck_verdict"], "reason": a["screen_recheck_reason"]}
-                        if "screen_recheck_verdict" in a else None),
+                        if a.get("screen_recheck_verdict", "SKIPPED") != "SKIPPED" else None),
+            "recheck_skipped": a.get("screen_recheck_reason", "the results predate the recheck")
+            if a.get("screen_recheck_verdict", "SKIPPED") == "SKIPPED" else None,
             "used": float(a["probability_used"]), "alpha": float(a["alpha"]), "screening": a["screening"],
             "disp": float(a["count_dispersion_estimate"]), "disp_dof": int(a["count_dispersion_dof"]),
             "disp_used": float(a["count_dispersion_used"]),
