@@ -258,8 +258,8 @@ def dsa_ships():
 
 
 def criteria_radiation(wildcards):
-    """The radiation step's file for the criteria step's surf-riding with the mean wave force: for the
-    memory-model ships the radiation rule computes (others: the chapter says it was not given)."""
+    """The radiation step's file for the criteria step's surf-riding with the mean wave force, for the
+    memory-model ships whose radiation step runs (for others the chapter says it was not given)."""
     return [f"{RESULTS}/hydro/{wildcards.ship}_radiation.nc"] if wildcards.ship in radiation_ships() else []
 
 
