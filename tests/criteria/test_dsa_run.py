@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from stabflow.config import load_ship
-from stabflow.criteria import dsa_run
+from stabflow.criteria import dsa, dsa_run
 from stabflow.criteria.standards import Standards
 from tests.conftest import SHIPS
 
@@ -109,18 +109,38 @@ def test_long_term_rate_and_row(small):
     assert ds.attrs["lateral_acceleration_limit"] == 9.81 and ds.attrs["crew_height_above_g"] == pytest.approx(3.0)
     assert "3.2.1.2" in ds.attrs["lateral_acceleration_source"]
     # the screening checked by simulating the screened cells as the others: every screened cell and
-    # no other was re-simulated; none of them failed nor rolled beyond half the failure angle
+    # no other was re-simulated; none of them failed nor rolled beyond half the failure angle; the
+    # longer rechecks of the likelier beam-sea cells (Hs 1.5 m, Tz 6.5-8.5 s) fit a roll tail above
+    # the Gaussian bound: those 3 cells are overruled and enter the rate as extrapolated
     m = ds.method.values.astype(str)
     rc = ds.recheck_method.values.astype(str)
-    np.testing.assert_array_equal(rc != "none", m == "screened")
-    assert ds.attrs["screen_recheck_cells"] == int((m == "screened").sum()) > 0
+    over = ds.screen_overruled.values.astype(bool)
+    np.testing.assert_array_equal(rc != "none", (m == "screened") | over)
+    assert ds.attrs["screen_recheck_cells"] == int((rc != "none").sum()) > 0
+    assert over.sum() == ds.attrs["screen_overruled_cells"] == 3
+    assert (rc[over] == "extrapolated").all() and (m[over] == "extrapolated").all()
+    assert (ds.cell_rate.values[over] > ds.recheck_rate.values[over] * 0.999).all()
     assert ds.attrs["screen_recheck_failures"] == 0 and (ds.recheck_failures.values[rc == "counted"] == 0).all()
     assert np.nanmax(ds.recheck_roll_max.values) < 0.5 * float(ds.failure_angle)
     assert (ds.recheck_rate_hi.values[rc != "none"] > 0).all()
-    # no failure: the estimate is 0, but the 5-min records' zero counts bound the contribution only
-    # above the interval's width, so the screening's harmlessness is not shown
-    assert float(ds.screen_recheck_rate) == 0.0 < float(ds.interval_width) < float(ds.screen_recheck_rate_hi)
-    assert ds.attrs["screen_recheck_verdict"] == "NOT SHOWN" and ds.attrs["screen_overruled_cells"] == 0
+    # every recheck ran records x ceil(p / mean p) records, so no cell weighs more than mean p / (records
+    # x duration) in the pooled bound; no failure: the estimate is 0 and the Fay-Feuer upper bound of
+    # zero counts is -ln(alpha / 2) max p / T (exact for zero counts)
+    sel = rc != "none"
+    p, pm = ds.probability.values, float(ds.probability.mean())
+    np.testing.assert_array_equal(ds.recheck_records.values[sel], np.ceil(p[sel] / pm - 1e-12).astype(int))
+    assert (ds.recheck_records.values[~sel] == 0).all() and ds.recheck_records.values[sel].max() > 1
+    np.testing.assert_array_equal(ds.recheck_exposure.values[sel], ds.recheck_records.values[sel] * CFG["duration"])
+    w = p[sel] / ds.recheck_exposure.values[sel]
+    assert w.max() <= pm / CFG["duration"] * (1 + 1e-12)
+    yr = 365.25 * 86400.0
+    assert float(ds.screen_recheck_rate) == 0.0
+    assert float(ds.screen_recheck_rate_hi) == pytest.approx(-math.log(0.025) * w.max() * yr, rel=1e-9)
+    assert ds.attrs["screen_recheck_w_max"] == pytest.approx(w.max() * yr, rel=1e-12)
+    # the per-cell Poisson bounds summed (the check before pooling) would be several times larger
+    assert float(ds.screen_recheck_rate_hi) < 0.2 * float(np.sum(p[sel] * ds.recheck_rate_hi.values[sel]) * yr)
+    up, width = float(ds.screen_recheck_rate_hi), float(ds.interval_width)
+    assert ds.attrs["screen_recheck_verdict"] == ("PASS" if up <= width else "NOT SHOWN")
     # the barge in beam seas up to Hs 5.5 m: failures are counted in some cells, and they carry the rate
     assert (ds.failures.values[m == "counted"] > 0).any()
     assert float(ds.part_share.sel(part="counted")) > 0.5
@@ -206,7 +226,9 @@ def test_a_lower_acceleration_limit_adds_failures(small, tmp_path):
                  f"  - {{key: {ACC_KEY}, value: 1.5, source: 'test document 3.1'}}\n")
     low = dsa_run.assess_dsa(ship, CRIT, CFG, std=Standards(p))
     m0, m1 = base.method.values.astype(str), low.method.values.astype(str)
-    sim = (m0 != "screened") & (m1 != "screened")
+    # (an overruled cell carries its recheck's run: other seeds and records)
+    sim = (m0 != "screened") & (m1 != "screened") & ~base.screen_overruled.values.astype(bool) \
+        & ~low.screen_overruled.values.astype(bool)
     assert sim.any()
     np.testing.assert_array_equal(low.roll_sigma.values[sim], base.roll_sigma.values[sim])
     k0, k1 = base.failures.values[sim & (m0 == "counted")], low.failures.values[sim & (m0 == "counted")]
@@ -313,43 +335,87 @@ def test_overruled_cells_enter_the_rate_as_simulated(small, monkeypatch):
     assert over.any()
     assert (cells.method.values.astype(str)[over] == "counted").all()
     np.testing.assert_array_equal(cells.failures.values[over], base.recheck_failures.values[over])
-    np.testing.assert_array_equal(cells.exposure.values[over], CFG["records"] * CFG["duration"])
+    np.testing.assert_array_equal(cells.exposure.values[over], base.recheck_records.values[over] * CFG["duration"])
     np.testing.assert_array_equal(cells.roll_max_cell.values[over], base.recheck_roll_max.values[over])
     assert (cells.roll_sigma.values[over] != base.roll_sigma.values[over]).all()  # the 20-min record's, not the screen's
-    rest = ~over
+    rest = ~over & ~base.screen_overruled.values.astype(bool)  # (the base run's overruled cells are extrapolated)
     np.testing.assert_array_equal(cells.method.values.astype(str)[rest], base.method.values.astype(str)[rest])
     np.testing.assert_array_equal(cells.failures.values[rest], base.failures.values[rest])
 
 
 def test_screening_recheck_verdicts():
-    """The recheck's verdict on synthetic cells, over the cells that stay screened (an overruled cell
-    is in the long-term rate as simulated, its contribution reported apart): PASS when their
-    simulated contribution's upper bound (sum p r_hi) is within the simulated cells' interval width,
-    FAIL when its estimate exceeds it, NOT SHOWN in between; SKIPPED when nothing was screened or the
-    recheck is off."""
+    """The recheck's verdict on synthetic cells: the screened cells' counts pooled by Fay & Feuer
+    (an overruled cell's failures included: the bound is on all screened cells, free of selecting the
+    cells that stay screened by their zero counts; an extrapolated recheck enters with its zero
+    count). PASS when the pooled upper bound is within the simulated cells' interval width, FAIL when
+    the estimate exceeds it, NOT SHOWN in between; SKIPPED when nothing was screened or the recheck is off."""
     yr = 365.25 * 86400.0
 
-    def cells(rates, his, methods, failures):
+    def cells(rates, his, methods, failures, exposure, p=0.1):
         n = len(rates)
         over = [int(dsa_run.overrules(m, k, r, 1e-8)) for m, k, r in zip(methods, failures, rates)]
-        return xr.Dataset({"probability": ("cell", np.full(n, 0.1)), "recheck_method": ("cell", methods),
+        return xr.Dataset({"probability": ("cell", np.broadcast_to(np.asarray(p, float), (n,))),
+                           "recheck_method": ("cell", methods),
                            "recheck_rate": ("cell", np.array(rates, float)),
                            "recheck_rate_hi": ("cell", np.array(his, float)),
-                           "recheck_failures": ("cell", np.array(failures)), "screen_overruled": ("cell", over)})
+                           "recheck_failures": ("cell", np.array(failures)), "screen_overruled": ("cell", over),
+                           "recheck_exposure": ("cell", np.array(exposure, float))})
 
-    # an extrapolated tail above the bound (overruled), a zero count, a cell not screened
-    ds = cells([2e-8, 0.0, 0.0], [3e-8, 1e-7, 0.0], ["extrapolated", "counted", "none"], [-1, 0, -1])
+    # an extrapolated tail above the bound (overruled, its count 0), a zero count, a cell not screened
+    ds = cells([2e-8, 0.0, 0.0], [3e-8, 1e-7, 0.0], ["extrapolated", "counted", "none"], [-1, 0, -1],
+               [3600.0, 7200.0, np.nan], p=[0.1, 0.1, 0.3])
     a = dsa_run.screening_recheck(ds, width=1.0)
     assert a["screen_recheck_cells"] == 2 and a["screen_overruled_cells"] == 1 and a["screen_recheck_zero_unfitted"] == 1
     assert a["screen_overruled_rate"] == pytest.approx(0.1 * 2e-8 * yr)
-    assert float(ds.screen_recheck_rate) == 0.0 and float(ds.screen_recheck_rate_hi) == pytest.approx(0.1 * 1e-7 * yr)
-    assert a["screen_recheck_verdict"] == "PASS"  # 0.32 per year within 1
-    assert dsa_run.screening_recheck(ds, width=0.1)["screen_recheck_verdict"] == "NOT SHOWN"
-    bad = cells([1e-9, 1e-4], [2e-9, 2e-4], ["extrapolated", "counted"], [-1, 3])
-    b = dsa_run.screening_recheck(bad, width=1e-3)  # the counted cell is overruled; the other's 3e-3 > 1e-3
-    assert b["screen_recheck_verdict"] == "FAIL" and b["screen_recheck_failures"] == 3
-    assert "3 failures" in b["screen_recheck_reason"] and b["screen_overruled_cells"] == 1
-    none = cells([0.0], [0.0], ["none"], [-1])
+    # zero counts: -ln(0.025) x the largest weight, 0.1 / 3600 s per year
+    up = -math.log(0.025) * 0.1 / 3600.0 * yr
+    assert float(ds.screen_recheck_rate) == 0.0 and float(ds.screen_recheck_rate_hi) == pytest.approx(up, rel=1e-9)
+    assert a["screen_recheck_hours"] == pytest.approx(3.0)
+    assert a["screen_recheck_verdict"] == "NOT SHOWN"
+    assert dsa_run.screening_recheck(ds, width=1.01 * up)["screen_recheck_verdict"] == "PASS"
+    # counted failures (the overruled cell's too) enter the estimate sum p k / T
+    bad = cells([1e-9, 1e-4], [2e-9, 2e-4], ["extrapolated", "counted"], [-1, 3], [3600.0, 3600.0])
+    est = 0.1 * 3 / 3600.0 * yr
+    _, _, up = dsa.fay_feuer_interval([0, 3], [0.1 / 3600.0, 0.1 / 3600.0])
+    b = dsa_run.screening_recheck(bad, width=0.5 * (est + up * yr))
+    assert float(bad.screen_recheck_rate) == pytest.approx(est, rel=1e-12)
+    assert float(bad.screen_recheck_rate_hi) == pytest.approx(up * yr, rel=1e-12) and up * yr > 2 * est
+    assert b["screen_recheck_failures"] == 3 and "3 failures" in b["screen_recheck_reason"]
+    assert b["screen_overruled_cells"] == 1 and b["screen_recheck_verdict"] == "NOT SHOWN"
+    assert dsa_run.screening_recheck(bad, width=up * yr)["screen_recheck_verdict"] == "PASS"
+    assert dsa_run.screening_recheck(bad, width=0.9 * est)["screen_recheck_verdict"] == "FAIL"
+    none = cells([0.0], [0.0], ["none"], [-1], [np.nan])
     assert dsa_run.screening_recheck(none, 1.0)["screen_recheck_verdict"] == "SKIPPED"
     assert dsa_run.screening_recheck(none.drop_vars("recheck_method"), 1.0)["screen_recheck_reason"] == \
         "screen.recheck is off"
+
+
+def test_recheck_records_follow_the_probability():
+    """records x ceil(p / mean p): no cell weighs more than mean p / (records x duration) in the pooled
+    bound; 'uniform' gives every cell the records; anything else is refused."""
+    p = np.array([0.001, 0.01, 0.0105, 0.05])
+    n = [dsa_run.recheck_records(x, 0.01, 2, "probability") for x in p]
+    assert n == [2, 2, 4, 10]
+    assert np.all(p / np.array(n) <= 0.01 / 2 * (1 + 1e-12))
+    assert dsa_run.recheck_records(0.05, 0.01, 2, "uniform") == 2
+    with pytest.raises(ValueError, match="recheck_allocation"):
+        dsa_run.recheck_records(0.05, 0.01, 2, "more")
+
+
+def test_pooled_bound_covers_heterogeneous_screened_cells():
+    """The pooled Fay-Feuer upper bound of mostly-zero counts misses the true sum C = sum w mu at most
+    alpha / 2 of the time when C lies just beyond what zero counts can bound (C = 3.75 w_M > -ln(0.025)
+    w_M: every replicate without a failure misses; exp(-sum mu) <= exp(-C / w_M) = 0.0235), both with
+    the expected counts spread over four decades across 200 cells and with all of them in the
+    heaviest cell (where that inequality is tight). 20000 replicates each."""
+    rng = np.random.default_rng(3)
+    n = 200
+    w = rng.uniform(0.2, 1.0, n)
+    w[0] = 1.0
+    for shape in (10 ** rng.uniform(-4, 0, n), np.eye(n)[0]):
+        mu = shape * 3.75 / np.sum(w * shape)  # sum w mu = 3.75 = 3.75 w_M
+        k = rng.poisson(mu, (20000, n))
+        hi = np.array([dsa.fay_feuer_interval(ki, w)[2] for ki in k])
+        miss = float(np.mean(hi < 3.75))
+        assert float(np.mean(~k.any(axis=1))) <= miss  # the zero replicates all miss
+        assert miss <= 0.025 + 3 * math.sqrt(0.025 * 0.975 / 20000)

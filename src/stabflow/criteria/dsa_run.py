@@ -40,12 +40,13 @@ Per cell, in order:
    few exceedances to fit, the zero count stays *counted* (its Poisson upper bound enters the
    interval).
 3. *Recheck* (``screen.recheck``, default on): every screened cell is simulated as in 2 (its own
-   seeds). Where that simulation contradicts the screening (:func:`overrules`: failures counted,
+   seeds; ``records`` x ceil(p / mean p) records, :func:`recheck_records`). Where that simulation contradicts the screening (:func:`overrules`: failures counted,
    or a fitted tail above the Gaussian bound) the cell is *overruled*: it enters the long-term rate
    as simulated (``screen_overruled``). The Gaussian bound misses the failures of strongly
    nonlinear roll (on the shipped hulls: 16 of the DTC's cells at 60 and 90 degree, roll sigma
    2-4.4 degree in the screening run, failing within 20 minutes; 3 of the tumblehome's). :func:`screening_recheck`
-   judges the screening by the rechecked cells' contribution against the interval's width.
+   bounds the screened cells' total contribution from their pooled counts (Fay & Feuer) and judges
+   it against the interval's width.
 """
 
 from __future__ import annotations
@@ -177,6 +178,22 @@ def overrules(method: str, failures: int, rate: float, bound: float) -> bool:
     or a fitted tail rate above the bound. A zero count without a fit does not (its Poisson bound
     says only that the record was short)."""
     return (method == "counted" and failures > 0) or (method == "extrapolated" and rate > bound)
+
+
+def recheck_records(probability: float, mean_probability: float, records: int, allocation: str) -> int:
+    """Records of one screened cell's recheck.
+
+    ``"uniform"``: ``records``, as every simulated cell. ``"probability"`` (default): ``records`` x
+    ceil(p / p_mean), so that a cell's weight in the pooled bound, w = p / T, is at most
+    p_mean / (records x duration) whatever its probability: the zero counts of many short rechecks
+    then bound the screened cells' total contribution as tightly as one long record of their summed
+    exposure would (:func:`screening_recheck`; Fay & Feuer 1997 take w_M = max w). The cost is at most
+    ``records`` x (cells + sum p / p_mean) records over the screened cells."""
+    if allocation == "uniform":
+        return int(records)
+    if allocation != "probability":
+        raise ValueError(f"dsa.screen.recheck_allocation: {allocation!r} is not 'probability' or 'uniform'")
+    return int(records) * max(1, math.ceil(probability / mean_probability - 1e-12))
 
 
 def failures_per_record(ens: xr.Dataset, window: float) -> np.ndarray:
@@ -312,6 +329,10 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     rc_r, rc_lo, rc_hi, rc_max, rc_T = (np.full(n, np.nan) for _ in range(5))
     overruled = np.zeros(n, np.int8)
     t_recheck = 0.0
+    # records of each recheck: proportional to the cell's probability (see recheck_records)
+    allocation = str(scr.get("recheck_allocation", "probability"))
+    p_mean = float(cells["probability"].mean())
+    rc_n = np.zeros(n, np.int64)
 
     def simulate(model, cf, s, lat):
         """(method, failures, exposure [s], rate, lo, hi [1/s], thresholds, records' counts or None,
@@ -374,7 +395,8 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                 if recheck:
                     a = time.process_time()
                     lat = None if lateral is None else dict(lateral, peak_floor=2.0 * asig[i])
-                    cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"],
+                    rc_n[i] = recheck_records(float(c.probability), p_mean, cfg["records"], allocation)
+                    cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, rc_n[i], cfg["duration"],
                                    cell_seed(cfg["seed"], *ix, 2), phi_f, max(0.5, 2.0 * s), lat)
                     rc_method[i], rc_k[i], rc_T[i], rc_r[i], rc_lo[i], rc_hi[i], used, per, ens = simulate(model, cf, s,
                                                                                                           lat)
@@ -430,6 +452,10 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                               ("recheck_rate_hi", rc_hi, "upper bound")):
             cells[name] = ("cell", x, {"units": "1/s", "long_name": f"{what} of the screened cell's simulation (counted: "
                                        "failures / exposure; extrapolated: the tail fit's)"})
+        cells["recheck_records"] = ("cell", rc_n, {"units": "1", "long_name": "records of the screened cell's "
+                                                   "simulation (0: not screened)"})
+        cells["recheck_exposure"] = ("cell", rc_T, {"units": "s", "long_name": "simulated time of the screened "
+                                                    "cell's simulation"})
         cells["screen_overruled"] = ("cell", overruled, {
             "units": "1", "long_name": "1: screened, but its simulation counted failures or fitted a tail above the "
                                        "screening bound, so it enters the long-term rate as simulated"})
@@ -499,7 +525,7 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     out["screen_bound"] = ((), bound, {"units": "1/year", "long_name": "upper bound of the screened cells' contribution"})
     out["interval_width"] = ((), width, {"units": "1/year", "long_name": "width of the simulated cells' interval"})
     out["failure_angle"] = ((), phi_f, {"units": "degree", "long_name": "failure roll angle"})
-    recheck = screening_recheck(out, width)
+    recheck = screening_recheck(out, width, float(cfg["alpha"]), used)
     acc_lim = acceleration_limit(std)
     what = "roll beyond the failure angle" + ("" if acc_lim is None else
                                                f" or lateral acceleration beyond {acc_lim:g} m/s2 at the crew location")
@@ -538,19 +564,26 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
     return out
 
 
-def screening_recheck(out: xr.Dataset, width: float) -> dict:
-    """The screening checked by simulation (``screen.recheck``): the screened cells simulated as the
-    others (their own seeds) give a second rate for them, by a different method than the Gaussian
-    bound. The cells whose simulation overruled the screening are in the long-term rate as
-    simulated; the cells that stay screened are what the screening still changes. Adds
-    ``screen_recheck_rate`` and ``screen_recheck_rate_hi`` [1/year] (sum p r over the cells that stay
-    screened, their simulation's estimate and upper bound) to ``out``; returns the attributes: cells
-    rechecked, their failures, cells overruled and their simulated contribution, cells resting on a
-    zero count without a tail fit, and the verdict on the issue's test that screening changes the
-    long-term rate by less than its interval (``width`` [1/year], the simulated cells' interval
-    width): PASS when the upper bound meets it, FAIL when the estimate exceeds it, NOT SHOWN in
-    between (the rechecks' records too short to decide), SKIPPED (with the reason) when nothing was
-    screened or the recheck is off."""
+def screening_recheck(out: xr.Dataset, width: float, alpha: float = 0.05, dispersion: float = 1.0) -> dict:
+    """The screening checked by simulation (``screen.recheck``): every screened cell simulated as the
+    others (its own seeds, ``recheck_records`` records) counts its declustered failures k_i in its
+    exposure T_i. The screened cells' true contribution C = sum p_i r_i is bounded by the Fay & Feuer
+    (1997) interval of the weighted Poisson sum sum (p_i / T_i) k_i (:func:`stabflow.criteria.dsa.fay_feuer_interval`,
+    ``dispersion`` as the counted cells'), pooled over all screened cells: with every count zero its
+    upper bound is -ln(alpha / 2) max_i p_i / T_i, which holds exactly (all counts are zero with
+    probability exp(-sum mu_i) <= exp(-C / w_M)). A zero-count cell whose tail was fitted enters with
+    its count, 0; the fit decides only whether the cell is overruled. The bound covers the overruled cells
+    too (they are in the long-term rate as simulated, so what the screening still changes is
+    smaller): it is a bound on what the screening could change even without the overrule, free of
+    the selection of the cells that stay screened by their own zero counts.
+
+    Adds ``screen_recheck_rate`` and ``screen_recheck_rate_hi`` [1/year] (the estimate sum p k / T and the
+    upper bound) to ``out``; returns the attributes: cells rechecked, their failures, cells overruled
+    and their simulated contribution, cells resting on a zero count without a tail fit, the pooled
+    weight bound, and the verdict on the issue's test that screening changes the long-term rate by
+    less than its interval (``width`` [1/year], the simulated cells' interval width): PASS when the
+    upper bound meets it, FAIL when the estimate exceeds it, NOT SHOWN in between (the rechecks too
+    short to decide), SKIPPED (with the reason) when nothing was screened or the recheck is off."""
     if "recheck_method" not in out:
         return {"screen_recheck_verdict": "SKIPPED", "screen_recheck_reason": "screen.recheck is off"}
     rc = out["recheck_method"].values.astype(str)
@@ -560,26 +593,35 @@ def screening_recheck(out: xr.Dataset, width: float) -> dict:
     yr = dsa.SECONDS_PER_YEAR
     over = out["screen_overruled"].values.astype(bool) if "screen_overruled" in out else np.zeros(len(rc), bool)
     kept = sel & ~over
+    p = out["probability"].values
+    T = out["recheck_exposure"].values[sel]
+    if not (np.all(np.isfinite(T)) and np.all(T > 0)):
+        raise ValueError("screening_recheck: every rechecked cell needs an exposure > 0 s")
+    # an extrapolated recheck had a zero count (the tail is fitted only then)
+    k = np.where(rc[sel] == "counted", out["recheck_failures"].values[sel], 0).astype(float)
+    w = p[sel] / T
+    est, _, up = (x * yr for x in dsa.fay_feuer_interval(k, w, alpha, dispersion))
 
     def contribution(mask, var):
-        return float(np.sum(out["probability"].values[mask] * out[var].values[mask]) * yr)
+        return float(np.sum(p[mask] * out[var].values[mask]) * yr)
 
-    est, up = contribution(kept, "recheck_rate"), contribution(kept, "recheck_rate_hi")
-    out["screen_recheck_rate"] = ((), est, {"units": "1/year", "long_name": "the contribution of the cells that stay "
-                                            "screened, by their simulation (estimate)"})
-    out["screen_recheck_rate_hi"] = ((), up, {"units": "1/year", "long_name": "the contribution of the cells that stay "
-                                              "screened, by their simulation (upper bound)"})
-    k = out["recheck_failures"].values
-    failures = int(k[sel & (rc == "counted")].sum())
-    unfitted = int((kept & (rc == "counted") & (k == 0)).sum())
+    out["screen_recheck_rate"] = ((), est, {"units": "1/year", "long_name": "the screened cells' contribution by "
+                                            "their simulation, sum p k / T (estimate)"})
+    out["screen_recheck_rate_hi"] = ((), up, {"units": "1/year", "long_name": "upper bound of the screened cells' "
+                                              "contribution by their simulation (Fay-Feuer, pooled)"})
+    failures = int(k.sum())
+    unfitted = int((kept & (rc == "counted") & (out["recheck_failures"].values == 0)).sum())
     verdict = "PASS" if up <= width else "FAIL" if est > width else "NOT SHOWN"
+    hours = float(T.sum()) / 3600.0
     return {"screen_recheck_cells": int(sel.sum()), "screen_recheck_failures": failures,
+            "screen_recheck_hours": hours, "screen_recheck_w_max": float(np.max(w)) * yr,
             "screen_overruled_cells": int(over.sum()), "screen_overruled_rate": contribution(over, "recheck_rate"),
             "screen_recheck_zero_unfitted": unfitted, "screen_recheck_verdict": verdict,
-            "screen_recheck_reason": (f"the {int(sel.sum())} screened cells simulated: {failures} failures; "
-                                      f"{int(over.sum())} cells overruled (failures counted or a fitted tail above the "
-                                      f"Gaussian bound), {contribution(over, 'recheck_rate'):.3g} per year, now in the "
-                                      f"long-term rate as simulated; the {int(kept.sum())} that stay screened contribute "
-                                      f"{est:.3g} per year by simulation, upper bound {up:.3g}, against the simulated "
-                                      f"cells' interval width {width:.3g} ({unfitted} of them rest on a zero count "
-                                      "without a tail fit, whose Poisson bound is that of a short record)")}
+            "screen_recheck_reason": (f"the {int(sel.sum())} screened cells simulated for {hours:.4g} h in all: "
+                                      f"{failures} failures; {int(over.sum())} cells overruled (failures counted or a "
+                                      f"fitted tail above the Gaussian bound), {contribution(over, 'recheck_rate'):.3g} "
+                                      f"per year, now in the long-term rate as simulated; all screened cells together "
+                                      f"contribute {est:.3g} per year by simulation, upper bound {up:.3g} (Fay-Feuer "
+                                      f"{100 * (1 - alpha):g} % over their pooled counts, largest weight p/T "
+                                      f"{float(np.max(w)) * yr:.3g} per year), against the simulated cells' interval "
+                                      f"width {width:.3g}")}

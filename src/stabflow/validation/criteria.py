@@ -59,12 +59,13 @@ def criteria_checks(ship: Ship, crit: xr.Dataset, dsa_out: xr.Dataset | None = N
 
 def screening_check(out: xr.Dataset | None) -> Check:
     """The DSA screening against simulation (:func:`stabflow.criteria.dsa_run.screening_recheck`):
-    the cells that stay screened, simulated as the others, contribute at most ``screen_recheck_rate_hi``
-    per year; PASS when that upper bound is within the simulated cells' interval width (the
-    screening then changes the long-term rate by less than its interval), FAIL otherwise (also when
-    the rechecks' records are too short to show it). SKIPPED with the reason when the DSA did not run
+    every screened cell simulated as the others (records in proportion to its probability); their
+    pooled counts bound the screened cells' total contribution by ``screen_recheck_rate_hi`` per year
+    (Fay & Feuer 1997, overruled cells included); PASS when that upper bound is within the simulated
+    cells' interval width (the screening then changes the long-term rate by less than its interval),
+    FAIL otherwise (also when the rechecks are too short to show it). SKIPPED with the reason when the DSA did not run
     for the ship, nothing was screened or the recheck is off."""
-    name = "DSA screening: upper bound of the screened cells' long-term contribution by simulation"
+    name = "DSA screening: upper bound of the screened cells' long-term contribution by simulation (pooled counts)"
     ref = "the simulated cells' interval width (screening may change the long-term rate by less than its interval)"
     if out is None:
         return Check.not_applicable(name, "no direct stability assessment for this ship (dsa.ships)", "1/year", ref,
