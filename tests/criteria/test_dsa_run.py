@@ -15,7 +15,8 @@ from tests.conftest import SHIPS
 CFG = {"headings_deg": [90.0, 180.0], "froude_numbers": [0.05], "records": 1, "duration": 300.0, "dt": 0.5,
        "stations": 11, "n_components": 40, "seed": 7, "alpha": 0.05, "max_lag": 120.0, "hs_max": 5.5, "dynamics": {},
        "initial_heel_deg": 1.0,
-       "screen": {"records": 1, "duration": 300.0, "sigma_factor": 1.5, "rate": 1e-9, "parametric_deg": 15.0}}
+       "screen": {"records": 1, "duration": 300.0, "sigma_factor": 1.5, "rate": 1e-9, "parametric_deg": 15.0,
+                  "parametric_fraction": 0.05, "parametric_band": 0.3, "parametric_wavelength_ratio": [0.5, 2.0]}}
 
 
 def test_failure_angle_is_the_smallest_limit():
@@ -144,6 +145,8 @@ def test_long_term_rate_and_row(small):
     # the barge in beam seas up to Hs 5.5 m: failures are counted in some cells, and they carry the rate
     assert (ds.failures.values[m == "counted"] > 0).any()
     assert float(ds.part_share.sel(part="counted")) > 0.5
+    # beam seas vary nothing along the ship: no cell is left out of the screening for parametric roll
+    assert ds.attrs["parametric_cells"] == 0 and (ds.parametric_fraction.values[ds.heading.values == 90.0] == 0).all()
     # head seas are never screened (parametric roll is not Gaussian); headings 90 and 180 at 2:1 weight
     head = ds.heading.values == 180.0
     assert (m[head] != "screened").all()
@@ -419,3 +422,33 @@ def test_pooled_bound_covers_heterogeneous_screened_cells():
         miss = float(np.mean(hi < 3.75))
         assert float(np.mean(~k.any(axis=1))) <= miss  # the zero replicates all miss
         assert miss <= 0.025 + 3 * math.sqrt(0.025 * 0.975 / 20000)
+
+
+def test_parametric_fraction_against_the_closed_form():
+    """At zero speed in following seas the components that drive principal parametric roll form one
+    frequency interval: w in 2 w_phi (1 +- band) with lambda = 2 pi g / w^2 within [0.5, 2] L. The
+    Bretschneider spectrum A w^-5 exp(-B w^-4) integrates in closed form, (A / 4B) exp(-B w^-4), so
+    the fraction is exact: the grid integral matches it to 1e-4. Beam seas vary nothing along the
+    ship: 0. A long roll period puts the resonance in stern-quartering seas at speed (the DTC)."""
+    from stabflow.constants import G
+
+    hs, tz, T_roll = 4.0, 7.0, 12.0
+    w2 = 4 * math.pi / T_roll
+    L = 2 * math.pi * G / w2**2  # lambda = L at twice the roll frequency
+    f = dsa_run.parametric_fraction(hs, tz, 0.0, 0.0, T_roll, L, 0.3, (0.5, 2.0))
+    # the spectrum's B from two of its values: S w^5 = A exp(-B w^-4)
+    wa, wb = 0.6, 1.2
+    sa, sb = (dsa.bretschneider_tz(w, hs, tz) * w**5 for w in (wa, wb))
+    B = math.log(sb / sa) / (wa**-4 - wb**-4)
+    lo, hi = dsa.spectrum_band(hs, tz)
+    # lambda in [0.5, 2] L <=> w in [w2 / sqrt(2), w2 sqrt(2)]; the band 2 w_phi (1 +- 0.3) lies inside it
+    a, b = max(w2 * 0.7, w2 / math.sqrt(2), lo), min(w2 * 1.3, w2 * math.sqrt(2), hi)
+    F = lambda w: math.exp(-B * w**-4)  # noqa: E731
+    exact = (F(b) - F(a)) / (F(hi) - F(lo))
+    assert 0.2 < exact < 0.9
+    assert f == pytest.approx(exact, abs=1e-3)  # the mask on a 2000-point grid (measured 2e-4)
+    assert dsa_run.parametric_fraction(hs, tz, 90.0, 5.0, T_roll, L, 0.3, (0.5, 2.0)) == 0.0
+    # the DTC at Fn 0.1 (5.9 m/s, L 364 m, roll period 38 s): 30 deg off the stern in Hs 6.5 m, Tz 10.5 s
+    # a quarter of the sea drives it, bow-quartering (120 deg) nothing
+    assert dsa_run.parametric_fraction(6.5, 10.5, 60.0, 5.94, 38.4, 363.6, 0.3, (0.5, 2.0)) > 0.1
+    assert dsa_run.parametric_fraction(6.5, 10.5, 120.0, 5.94, 38.4, 363.6, 0.3, (0.5, 2.0)) < 0.01

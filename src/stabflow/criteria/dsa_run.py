@@ -26,7 +26,10 @@ Per cell, in order:
    the acceleration (its own sigma and zero up-crossing rate) is added, and its run must stay below
    half the limit. Head and following seas (within
    ``screen.parametric_deg``) are never screened: roll there is parametric, not Gaussian; their
-   records start from ``initial_heel_deg``.
+   records start from ``initial_heel_deg``. Nor are the cells whose sea drives principal
+   parametric roll (:func:`parametric_fraction` above ``screen.parametric_fraction``): on the DTC
+   (roll period 38 s) stern-quartering seas at 60 degree build roll up over 10-30 minutes at half
+   the encounter frequency (sigma 3-4 degree in the first 5 minutes, 9-18 in the next 25).
 2. Otherwise *simulated*: ``records`` records of ``duration``; failures are the declustered
    exceedances of the failure angle (crossings of +-phi_f, and of +-the acceleration limit, closer
    than the decorrelation time of the cell's roll, at least one natural roll period, are one
@@ -170,6 +173,37 @@ def _models(ship: Ship, cfg: dict, headings, speeds, hydro, phi_f):
             c = condition(cfg, ship.name, 1.0, 8.0, m, u, 1, 60.0, 0, phi_f, 1.0)
             out[(float(m), float(u))] = build_model(ship, c, hydro)
     return out
+
+
+def parametric_fraction(hs: float, tz: float, heading_deg: float, speed: float, roll_period: float, length: float,
+                        band: float, wavelengths: tuple[float, float], n: int = 2000) -> float:
+    """Fraction [-] of the sea's variance carried by wave components that can drive principal
+    parametric roll: encounter frequency within ``band`` (relative) of twice the natural roll
+    frequency, w_e = 2 w_phi (1 +- band), and wave length along the ship lambda / |cos mu| within
+    ``wavelengths`` x ``length`` (the restoring varies most with the wave's crest or trough
+    amidships when that length is close to the ship's: the wave cases of parametric roll and pure
+    loss of stability take lambda = L, Circ.1627). Bretschneider (Hs [m], Tz [s]) on its band
+    (:func:`stabflow.criteria.dsa.band_spectrum`); ``heading_deg`` 0 following; ``speed`` [m/s],
+    ``roll_period`` [s], ``length`` [m].
+
+    A criterion for leaving a cell out of the Gaussian screening (stabflow's choice, no standard):
+    the screening run is a few minutes from upright, shorter than parametric roll takes to build up,
+    and its roll is then not Gaussian. Heading alone does not find these cells: a long roll period
+    meets w_e = 2 w_phi at lambda / |cos mu| = L in stern-quartering seas (the DTC at 30 degree off
+    the stern, roll period 38 s at Fn 0.1)."""
+    from stabflow.waves.synthesis import encounter_frequency
+
+    lo, hi = dsa.spectrum_band(hs, tz)
+    w = np.linspace(lo, hi, n)
+    S = dsa.band_spectrum(w, hs, tz, (lo, hi))
+    we = np.abs(encounter_frequency(w, speed, heading_deg))
+    w2 = 4.0 * math.pi / roll_period
+    c = abs(math.cos(math.radians(heading_deg)))
+    lam = 2.0 * math.pi * G / w**2
+    along = (lam >= wavelengths[0] * length * c) & (lam <= wavelengths[1] * length * c)
+    sel = (np.abs(we / w2 - 1.0) <= band) & along
+    total = float(np.trapezoid(S, w))
+    return float(np.trapezoid(np.where(sel, S, 0.0), w)) / total if total > 0 else 0.0
 
 
 def overrules(method: str, failures: int, rate: float, bound: float) -> bool:
@@ -320,6 +354,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     # grid indices of each cell (its seeds do not depend on the order of the cells)
     idx = {k: np.searchsorted(np.unique(cells[k].values), cells[k].values) for k in ("hs", "tz", "heading", "speed_kn")}
     parametric = float(scr["parametric_deg"])
+    pf = np.full(n, np.nan)
     per_record, weights = [], []
     recheck = bool(scr.get("recheck", True))
     # the screened cells simulated as the others (their own seeds), to check the screening; kept
@@ -359,8 +394,11 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
         key = (float(c.heading), float(c.speed_kn))
         model = models[key]
         ix = [idx[k][i] for k in ("hs", "tz", "heading", "speed_kn")]
-        # head and following seas: roll is parametric, not Gaussian: never screened
-        gaussian = parametric < key[0] < 180.0 - parametric
+        # head and following seas, and any sea with energy where principal parametric roll can be
+        # driven (parametric_fraction): roll is parametric, not Gaussian: never screened
+        pf[i] = parametric_fraction(float(c.hs), float(c.tz), key[0], key[1] * KNOT, model.roll_period, lwl,
+                                    float(scr["parametric_band"]), tuple(scr["parametric_wavelength_ratio"]))
+        gaussian = parametric < key[0] < 180.0 - parametric and pf[i] <= float(scr["parametric_fraction"])
         a = time.process_time()
         es = None
         if gaussian:
@@ -435,6 +473,8 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
     cells["roll_sigma"] = ("cell", sig, {"units": "degree", "long_name": "roll standard deviation of the cell's run"})
     cells["roll_max_cell"] = ("cell", rmax, {"units": "degree", "long_name": "largest |roll| of the cell's run"})
+    cells["parametric_fraction"] = ("cell", pf, {"units": "1", "long_name": "fraction of the sea's variance at "
+                                                 "encounter frequencies and lengths that drive principal parametric roll"})
     cells["tail_threshold_sigma"] = ("cell", thr[:, 0], {"units": "1", "long_name": "threshold of the extrapolated "
                                                          "cell's roll tail fit, in the run's roll sigma"})
     if recheck:
@@ -471,6 +511,8 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     if lateral is not None:
         cells.attrs.update(lateral_acceleration_limit=acc_lim, crew_height_above_g=lateral["height"],
                            lateral_acceleration_source=std.get(ACC_KEY).cite())
+    beam = (cells["heading"].values > parametric) & (cells["heading"].values < 180.0 - parametric)
+    cells.attrs.update(parametric_cells=int(np.sum(beam & (pf > float(scr["parametric_fraction"])))))
     cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
                        count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g}"
@@ -478,7 +520,11 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                                  + f" below {scr['rate']:g} /s and no roll beyond half the failure angle"
                                  + ("" if lateral is None else " nor acceleration beyond half its limit")
                                  + "; not applied within "
-                                 + f"{parametric:g} deg of head and following seas (records there start from "
+                                 + f"{parametric:g} deg of head and following seas nor where more than "
+                                 + f"{float(scr['parametric_fraction']):g} of the sea's variance lies within "
+                                 + f"{float(scr['parametric_band']):g} of twice the roll frequency in encounter at a "
+                                 + "length along the ship of " + "-".join(f"{x:g}" for x in scr["parametric_wavelength_ratio"])
+                                 + " L (parametric roll; records there start from "
                                  + f"{float(cfg['initial_heel_deg']):g} deg heel): a heuristic, not a proven bound")
     # CPU seconds: for the log and the benchmark, not written (the file must not change between runs)
     cells.encoding["cpu"] = {"build": t_build, "screen": t_screen, "simulate": t_sim, "recheck": t_recheck, "total": time.process_time() - t0}
