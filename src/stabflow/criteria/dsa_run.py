@@ -158,6 +158,8 @@ def condition(cfg: dict, ship: str, hs: float, tz: float, heading: float, speed_
          "samples": 0, "max_lag": float(cfg["max_lag"])}
     if cfg.get("dynamics"):
         c["dynamics"] = dict(cfg["dynamics"])
+    if cfg.get("dphi_dzdt", False):
+        c["dphi_dzdt"] = True
     if lateral:
         c["lateral_acceleration"] = dict(lateral)
     return _fill_defaults(schema("config")["properties"]["ensembles"]["items"], c)
@@ -514,6 +516,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                            lateral_acceleration_source=std.get(ACC_KEY).cite())
     beam = (cells["heading"].values > parametric) & (cells["heading"].values < 180.0 - parametric)
     cells.attrs.update(parametric_cells=int(np.sum(beam & (pf > float(scr["parametric_fraction"])))))
+    cells.attrs.update(dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))))
     cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
                        count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g}"
