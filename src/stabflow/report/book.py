@@ -388,6 +388,7 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             if a.get("screen_recheck_verdict", "SKIPPED") == "SKIPPED" else None,
             "used": float(a["probability_used"]), "alpha": float(a["alpha"]), "screening": a["screening"],
             "parametric_cells": a.get("parametric_cells", "no"),
+            "dphi_dzdt": bool(a.get("dphi_dzdt", 0)),
             "disp": float(a["count_dispersion_estimate"]), "disp_dof": int(a["count_dispersion_dof"]),
             "disp_used": float(a["count_dispersion_used"]),
             "acc_limit": float(a.get("lateral_acceleration_limit", np.nan)),
