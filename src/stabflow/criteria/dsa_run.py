@@ -29,7 +29,8 @@ Per cell, in order:
    records start from ``initial_heel_deg``. Nor are the cells whose sea drives principal
    parametric roll (:func:`parametric_fraction` above ``screen.parametric_fraction``): on the DTC
    (roll period 38 s) stern-quartering seas at 60 degree build roll up over 10-30 minutes at half
-   the encounter frequency (sigma 3-4 degree in the first 5 minutes, 9-18 in the next 25).
+   the encounter frequency (Hs 6.5 m, Tz 10.5 s, Fn 0.1, six 30-min records: sigma 3-4 degree in
+   most first 5 minutes, 5-18 in the last 15; in beam seas of the same sea 1.2-3.3).
 2. Otherwise *simulated*: ``records`` records of ``duration``; failures are the declustered
    exceedances of the failure angle (crossings of +-phi_f, and of +-the acceleration limit, closer
    than the decorrelation time of the cell's roll, at least one natural roll period, are one
