@@ -57,6 +57,7 @@ Per cell, in order:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import time
 
@@ -179,6 +180,17 @@ def _models(ship: Ship, cfg: dict, headings, speeds, hydro, phi_f):
     return out
 
 
+@functools.lru_cache(maxsize=1024)
+def _sea_grid(hs: float, tz: float, n: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """(omega [rad/s], Bretschneider S [m^2 s], its integral [m^2]) on ``n`` points of the spectrum's
+    band: one per sea state, shared by its headings and speeds (read-only arrays)."""
+    lo, hi = dsa.spectrum_band(hs, tz)
+    w = np.linspace(lo, hi, n)
+    S = dsa.band_spectrum(w, hs, tz, (lo, hi))
+    w.flags.writeable = S.flags.writeable = False
+    return w, S, float(np.trapezoid(S, w))
+
+
 def parametric_fraction(hs: float, tz: float, heading_deg: float, speed: float, roll_period: float, length: float,
                         band: float, wavelengths: tuple[float, float], n: int = 2000) -> float:
     """Fraction [-] of the sea's variance carried by wave components that can drive principal
@@ -197,16 +209,13 @@ def parametric_fraction(hs: float, tz: float, heading_deg: float, speed: float, 
     the stern, roll period 38 s at Fn 0.1)."""
     from stabflow.waves.synthesis import encounter_frequency
 
-    lo, hi = dsa.spectrum_band(hs, tz)
-    w = np.linspace(lo, hi, n)
-    S = dsa.band_spectrum(w, hs, tz, (lo, hi))
+    w, S, total = _sea_grid(float(hs), float(tz), int(n))
     we = np.abs(encounter_frequency(w, speed, heading_deg))
     w2 = 4.0 * math.pi / roll_period
     c = abs(math.cos(math.radians(heading_deg)))
     lam = 2.0 * math.pi * G / w**2
     along = (lam >= wavelengths[0] * length * c) & (lam <= wavelengths[1] * length * c)
     sel = (np.abs(we / w2 - 1.0) <= band) & along
-    total = float(np.trapezoid(S, w))
     return float(np.trapezoid(np.where(sel, S, 0.0), w)) / total if total > 0 else 0.0
 
 
@@ -359,6 +368,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     idx = {k: np.searchsorted(np.unique(cells[k].values), cells[k].values) for k in ("hs", "tz", "heading", "speed_kn")}
     parametric = float(scr["parametric_deg"])
     pf = np.full(n, np.nan)
+    resonant = np.zeros(n, bool)  # away from head and following seas, left unscreened for parametric roll
     per_record, weights = [], []
     recheck = bool(scr.get("recheck", True))
     # the screened cells simulated as the others (their own seeds), to check the screening; kept
@@ -402,7 +412,9 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
         # driven (parametric_fraction): roll is parametric, not Gaussian: never screened
         pf[i] = parametric_fraction(float(c.hs), float(c.tz), key[0], key[1] * KNOT, model.roll_period, lwl,
                                     float(scr["parametric_band"]), tuple(scr["parametric_wavelength_ratio"]))
-        gaussian = parametric < key[0] < 180.0 - parametric and pf[i] <= float(scr["parametric_fraction"])
+        off_axis = parametric < key[0] < 180.0 - parametric
+        resonant[i] = off_axis and pf[i] > float(scr["parametric_fraction"])
+        gaussian = off_axis and not resonant[i]
         a = time.process_time()
         es = None
         if gaussian:
@@ -515,9 +527,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     if lateral is not None:
         cells.attrs.update(lateral_acceleration_limit=acc_lim, crew_height_above_g=lateral["height"],
                            lateral_acceleration_source=std.get(ACC_KEY).cite())
-    beam = (cells["heading"].values > parametric) & (cells["heading"].values < 180.0 - parametric)
-    cells.attrs.update(parametric_cells=int(np.sum(beam & (pf > float(scr["parametric_fraction"])))))
-    cells.attrs.update(dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))))
+    cells.attrs.update(parametric_cells=int(resonant.sum()), dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))))
     cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
                        count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g}"
