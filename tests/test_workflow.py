@@ -30,6 +30,8 @@ def test_lint_clean():
 
 GM_EXACT_VARIATION = ("GM in quartering waves lambda = L, H = T/3, ship held: first-harmonic variation vs pressure "
                       "integration (exact wave surface)")
+BEAM_HEAVE = ("d2phi/dzdt option, beam waves at twice the roll frequency, H/lambda = 1/500: heave vs pressure "
+              "integration with decay")
 
 
 def test_netcdf_outputs(pipeline):
@@ -40,9 +42,9 @@ def test_netcdf_outputs(pipeline):
             with xr.open_dataset(pipeline / "validation" / f"{ship}_{step}.nc") as ds:
                 status = list(ds.status.values)
                 fails = [str(n) for n, s in zip(ds.name.values, status) if s == "FAIL"]
-                # the one expected FAIL: the planar waterline's GM variation against the exact
-                # surface (barge +24.8 %, README time-domain model)
-                expected = [GM_EXACT_VARIATION] if (ship, step) == ("barge", "dynamics") else []
+                # the expected FAILs: the planar waterline's GM variation against the exact surface
+                # (barge +24.8 %) and its heave in short beam waves (+12 %), README time-domain model
+                expected = [GM_EXACT_VARIATION, BEAM_HEAVE] if (ship, step) == ("barge", "dynamics") else []
                 assert fails == expected, (ship, step, fails)
                 assert status.count("PASS") >= 3
                 assert set(ds.kind.values) <= {"independent", "consistency"}
@@ -136,11 +138,12 @@ def test_criteria_results_and_chapters(pipeline):
     with xr.open_dataset(pipeline / "validation" / "barge_criteria.nc") as ds:
         status = dict(zip((str(n) for n in ds.name.values), (str(s) for s in ds.status.values)))
         # closed forms of the box and the linear beam-sea model in small waves pass; at 5 deg roll
-        # the barge's time domain rolls about a third more than the linear model: a recorded FAIL
+        # the barge's time domain (the DSA's kernel, with the pressure-decay term) rolls about a
+        # fifth more than the linear model: a recorded FAIL
         beam = [k for k in status if k.startswith("beam seas without way")]
         assert len(beam) == 2 and status[beam[0]] == "PASS" and status[beam[1]] == "FAIL"
         value = dict(zip((str(n) for n in ds.name.values), ds.value.values.astype(float)))
-        assert 0.25 < value[beam[1]] < 0.45  # the README's +33 % at roll sigma 5 deg
+        assert 0.15 < value[beam[1]] < 0.30  # the README's +22.5 % at roll sigma 5 deg
         # the level-1 routes against each other: the box's waterplane route has delta GM 0 (its
         # inertia does not change with draft), the wave pass the second-order change: -100 %, FAIL
         routes = [k for k in status if k.startswith(("level-1 parametric rolling", "level-1 pure loss"))]
@@ -154,11 +157,12 @@ def test_criteria_results_and_chapters(pipeline):
         assert {v for k, v in status.items() if k not in beam + routes + screening} == {"PASS"} and len(status) >= 13
     with xr.open_dataset(pipeline / "validation" / "wigley_criteria.nc") as ds:
         # the Wigley hull's linear beam-sea model against the time domain in the same beam sea:
-        # 0.5 deg within 3 % and 5 deg within 10 % (measured -0.44 % and -0.26 %)
+        # 0.5 deg within 3 % and 5 deg within 10 % (measured -0.39 % and +3.3 % with the DSA's
+        # pressure-decay term; -0.44 % and -0.26 % without it)
         rows = [(str(s), str(k), float(v)) for n, s, k, v in zip(ds.name.values, ds.status.values, ds.kind.values,
                                                                   ds.value.values) if str(n).startswith("beam seas")]
         assert [r[:2] for r in rows] == [("PASS", "consistency")] * 2, rows
-        assert abs(rows[0][2]) < 0.01 and abs(rows[1][2]) < 0.01, rows
+        assert abs(rows[0][2]) < 0.01 and 0.02 < rows[1][2] < 0.05, rows
 
 
 def test_criteria_chapter_names_the_acceleration_failure(pipeline, tmp_path):
@@ -178,7 +182,11 @@ def test_criteria_chapter_names_the_acceleration_failure(pipeline, tmp_path):
     assert "lateral acceleration beyond **9.81 m/s²** at the crew location" in page and "3.2.1.2" in page
     with xr.open_dataset(res / "criteria" / "barge_dsa.nc") as d:
         d = d.load()
-    assert d.attrs["row_verdict"] == "FAIL" and float(d.rate_lo) > 2.6e-3  # the bare barge, by far
+    # the test run's 5-min beam-sea records count no failure on the barge with the pressure-decay
+    # term (the default run's 20-min records do: FAIL, 1,304 per year at least): its interval
+    # [0, hi] straddles the standard, so the row decides nothing and says so
+    assert float(d.rate_lo) <= 2.6e-3 < float(d.rate_hi)
+    assert d.attrs["row_verdict"] == "NOT EVALUATED" and "straddles the standard" in d.attrs["row_reason"]
     for k in ("lateral_acceleration_limit", "crew_height_above_g", "lateral_acceleration_source"):
         del d.attrs[k]
     d.to_netcdf(res / "criteria" / "barge_dsa.nc")
