@@ -42,7 +42,7 @@ def test_excitation_interpolation(trawler):
     for w in 0.5 * (coarse[10:70:12] + coarse[11:71:12]):
         lam = 2 * math.pi * G / w**2
         amp = 0.5 * bs.EXCITATION_STEEPNESS * lam
-        loads = KernelLoads(m.sec, m.ship.rho, float(st["lcg"]), float(st["kg"]), regular(2 * amp, lam), 90.0, 0.0, m.depth)
+        loads = KernelLoads(m.sec, m.ship.rho, float(st["lcg"]), float(st["kg"]), regular(2 * amp, lam), 90.0, 0.0, m.decay)
         direct = fk_excitation(loads, h0, th0, w)[1] / amp
         i = int(np.argmin(np.abs(b.omega - w)))
         assert abs(b.force[i, 1] - direct) < 5e-3 * top

@@ -456,17 +456,19 @@ def test_parametric_fraction_against_the_closed_form():
 
 def test_the_pressure_decay_term_reaches_the_cells_models():
     """``dsa.dphi_dzdt`` (the pipeline's default: true) puts the depth-averaged d2phi/dzdt term in
-    every cell's model (the sections' calm-water depths are built); off, the condition has no key
-    and the model no depths (paper 000's kernel)."""
+    every cell's model (the sections' pressure decay is built); off, the condition has no key
+    and the model no decay (paper 000's kernel)."""
     on = dsa_run.condition(dict(CFG, dphi_dzdt=True), "barge", 2.0, 7.0, 90.0, 5.0, 1, 60.0, 0, 40.0, 1.0)
     off = dsa_run.condition(CFG, "barge", 2.0, 7.0, 90.0, 5.0, 1, 60.0, 0, 40.0, 1.0)
     assert on["dphi_dzdt"] is True and "dphi_dzdt" not in off
     ship = load_ship(SHIPS / "barge.yaml")
     m_on, m_off = (next(iter(dsa_run._models(ship, c, [90.0], [5.0], None, 40.0).values()))
                    for c in (dict(CFG, dphi_dzdt=True), CFG))
-    assert m_off.depth is None and m_on.depth is not None
-    # the wall-sided box: every section's mean depth is the draft, 6 m
-    np.testing.assert_allclose(m_on.depth, 6.0, rtol=1e-9)
+    assert m_off.decay is None and m_on.decay is not None
+    # the wall-sided box of draft 6 m: every section's area-averaged e^(k z) is (1 - e^(-6 k)) / (6 k)
+    k = np.array([0.01, 0.1, 1.0])
+    np.testing.assert_allclose(m_on.decay(k), np.broadcast_to(-np.expm1(-6 * k) / (6 * k), (len(m_on.sec.x), 3)),
+                               rtol=1e-9)
     from stabflow.config import schema
 
     assert schema("config")["properties"]["dsa"]["properties"]["dphi_dzdt"]["default"] is True

@@ -67,7 +67,7 @@ def test_coefficient_series_phase_and_speed(dtc):
     we = w + w**2 / 9.80665 * model.speed  # head seas
     t = np.linspace(0.0, 3 * 2 * np.pi / we, 96, endpoint=False)  # whole encounter periods
     ctab = dm.coefficient_table(waves, t)
-    snaps = station_wave_table(*waves, model.sec.x, dm.heading_deg, model.speed, t, model.depth)
+    snaps = station_wave_table(*waves, model.sec.x, dm.heading_deg, model.speed, t, model.decay)
     args = kernel_args(model.sec, model.tables)
     R = D._sample(args, model.p, dm.q0, np.zeros((1, 3)), snaps)[:, 0, :]
     R0 = D._sample(args, model.p, dm.q0, np.zeros((1, 3)), 0 * snaps[:1])[0, 0]

@@ -150,7 +150,7 @@ def beam_sea_model(model, w_min: float = 0.05, w_max: float = 7.0, n_coarse: int
     for i, w in enumerate(coarse):
         lam = 2 * math.pi * G / w**2
         amp = 0.5 * EXCITATION_STEEPNESS * lam
-        loads = KernelLoads(sec, model.ship.rho, lcg, kg, regular(2 * amp, lam), 90.0, 0.0, model.depth)
+        loads = KernelLoads(sec, model.ship.rho, lcg, kg, regular(2 * amp, lam), 90.0, 0.0, model.decay)
         F[i] = fk_excitation(loads, h0, th0, w) / amp
     fine = np.arange(w_min, w_max + 0.5 * dw, dw)
     force = CubicSpline(coarse, F.real, axis=0)(fine) + 1j * CubicSpline(coarse, F.imag, axis=0)(fine)

@@ -130,11 +130,11 @@ def _hermite_slope(y0, d0, y1, d1, t, h):
 
 
 @njit(cache=True)
-def _station_wave(xs, p, m, s, line, wave):
-    """Fill ``wave`` (nst, 5) with (eta, S, 0, eta_xixi, u) (eta_xixi = dS/dxi, the slope of S's Hermite
+def _station_wave(xs, p, m, s, line, decay, wave):
+    """Fill ``wave`` (nst, 8) with the stations' wave in ``_kernels``'s layout (``_wave_columns``) and u (eta_xixi = dS/dxi, the slope of S's Hermite
     interpolant: 0.4 % at 8 points per wavelength where a linear one of the tabulated dS/dxi is 7.6 %
     low), at the stations' instantaneous positions from the line
-    table ``line`` (npoints, 3) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
+    table ``line`` (npoints, 3 + 2 r) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
     m[M_XI_TIME] + k m[M_DXI] (a table on a grid moving with the ship's drift). Returns False if a station lies outside the table (its
     value is then taken at the nearest end); a periodic table (``M_WRAP`` intervals, one regular
     wave, last point = first) is read modulo its period and never left.
@@ -158,10 +158,14 @@ def _station_wave(xs, p, m, s, line, wave):
     fixed stations are (paper 000 section 3: the body origin held, its horizontal shift with the
     rotations left out), for the constrained-case comparison.
 
-    ``wave`` (nst, 5) receives (eta, S, 0, eta_xixi, u), u the station's coordinate in the table
-    [intervals] (``_fkhs`` reads the first two columns, or four for the curved waterline;
-    ``_tilt_loads`` the fifth); eta_xixi only with the curved waterline (``M_CURVED``), the column
-    left as it was otherwise."""
+    ``wave`` (nst, 8) receives (eta, S) in its first columns, then with the pressure decay
+    (``decay`` (nst, 3 r), r > 0: the station weights (WF, WZ, WY) of
+    ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j,
+    S_hz = sum_j WZ_ij Q_j and T_yy = -sum_j WY_ij Q_j in columns 2-5 (P_j, Q_j in the table's
+    columns 3 + 4 j and 5 + 4 j, their slopes after each, Hermite as eta), and with the curved
+    waterline (``M_CURVED``) eta_xixi in column 3, or 6 with the decay: the first ``_wave_columns``
+    columns are ``_kernels._fkhs``'s layout. Column 7 receives u, the station's coordinate in the
+    table [intervals] (``_tilt_loads``). Columns not written are left as they were."""
     xg = p[P_XG]
     cb = p[P_COS_BETA]
     sb = p[P_SIN_BETA]
@@ -186,6 +190,11 @@ def _station_wave(xs, p, m, s, line, wave):
     npt = line.shape[0]
     wrap = m[M_WRAP]
     curved = m[M_CURVED] != 0.0
+    nr = decay.shape[1] // 3
+    ic = 6 if nr > 0 else 3
+    if curved and nr == 0:
+        for i in range(xs.shape[0]):
+            wave[i, 2] = 0.0
     inside = True
     for i in range(xs.shape[0]):
         d = ct * (xs[i] - xg) + ox
@@ -203,35 +212,52 @@ def _station_wave(xs, p, m, s, line, wave):
         t = u - k
         wave[i, 0] = _hermite(line[k, 0], line[k, 1], line[k + 1, 0], line[k + 1, 1], t, h)
         wave[i, 1] = _hermite(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
-        wave[i, 2] = 0.0
+        if nr > 0:
+            dz = 0.0
+            sh = 0.0
+            shz = 0.0
+            tyy = 0.0
+            for j in range(nr):
+                c = 3 + 4 * j
+                pj = _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], t, h)
+                qj = _hermite(line[k, c + 2], line[k, c + 3], line[k + 1, c + 2], line[k + 1, c + 3], t, h)
+                dz += decay[i, j] * pj
+                sh += decay[i, j] * qj
+                shz += decay[i, nr + j] * qj
+                tyy -= decay[i, 2 * nr + j] * qj
+            wave[i, 2] = dz
+            wave[i, 3] = sh
+            wave[i, 4] = shz
+            wave[i, 5] = tyy
         if curved:
-            wave[i, 3] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
-        wave[i, 4] = u
+            wave[i, ic] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
+        wave[i, 7] = u
     return inside
 
 
 @njit(cache=True, inline="always")
-def _line_slope(line, m, u):
-    """S at the line table coordinate ``u`` (in intervals from its first point, as ``wave[:, 4]``):
-    cubic Hermite in S and dS/dxi, periodic tables read modulo their period, others at the nearest
-    end beyond it."""
+def _line_value(line, m, u, c):
+    """Column ``c`` of the line table (its slope along xi in ``c + 1``) at the coordinate ``u`` (in
+    intervals from its first point, as ``wave[:, 7]``): cubic Hermite, periodic tables read modulo
+    their period, others at the nearest end beyond it. Column 1 is S."""
     npt = line.shape[0]
     wrap = m[M_WRAP]
     if wrap > 0.0:
         u -= wrap * math.floor(u / wrap)
     u = min(max(u, 0.0), npt - 1.0)
     k = min(int(u), npt - 2)
-    return _hermite(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], u - k, m[M_DXI])
+    return _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], u - k, m[M_DXI])
 
 
 @njit(cache=True)
-def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, wave, work, out):
+def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, wave, work, out):
     """Add to ``out`` (6,) the horizontal FK force of the pitched sections' tilt and its moment
     about G (heading frame), after ``_fkhs`` left each section's area and first moments (body axes,
     about the body origin) in ``work[:, 2:5]``.
 
     The volume-based force on a section is rho g dV times the wave slope (paper 000 eq 9, decay
-    off: grad p = rho g grad eta), taken at the station. A pitched section is a tilted slab: its
+    off: grad p = rho g grad eta; with the pressure decay the area-averaged slope S_h, both here and
+    at the centroid), taken at the station. A pitched section is a tilted slab: its
     point (y, z) lies sin(theta) (sin(phi) y + cos(phi) (z - z_w)) along the ship from the station
     (read at the waterline's height z_w, ``_station_wave``). To second order the force is rho g dV
     times the slope S_c at the section's centroid, read from the line table ``line`` where the
@@ -250,6 +276,7 @@ def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, wave, w
     sp = math.sin(phi)
     ct = math.cos(theta)
     h = m[M_DXI]
+    nr = decay.shape[1] // 3
     vs = 0.0
     px = 0.0
     py = 0.0
@@ -260,7 +287,14 @@ def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, wave, w
             continue
         # the centroid's distance along xi from the station, then dV (S_c - S)
         d = cb * st * (sp * work[i, 3] + cp * (work[i, 4] - zw * A)) / A
-        e = (_line_slope(line, m, wave[i, 4] + d / h) - wave[i, 1]) * A * dx[i]
+        if nr > 0:
+            # the pressure decay: the area-averaged slope S_h = sum_j WF_ij Q_j there and here
+            sc = 0.0
+            for j in range(nr):
+                sc += decay[i, j] * _line_value(line, m, wave[i, 7] + d / h, 5 + 4 * j)
+            e = (sc - wave[i, 3]) * A * dx[i]
+        else:
+            e = (_line_value(line, m, wave[i, 7] + d / h, 1) - wave[i, 1]) * A * dx[i]
         vs += e
         px += (xs[i] - xg) * e
         py += work[i, 3] / A * e
@@ -494,31 +528,42 @@ def _memory(p, m, s, r, ds, u):
         r[S_PITCH] += u * (a33 * vz + tilde + xt * mt)
 
 
+@njit(cache=True, inline="always")
+def _wave_columns(m, decay):
+    """Columns of ``_kernels``'s station-wave layout: 2, 4 with the curved waterline, 6 with the
+    pressure decay, 7 with both."""
+    n = 6 if decay.shape[1] > 0 else 2
+    if m[M_CURVED] != 0.0:
+        n += 1 if n == 6 else 2
+    return n
+
+
 @njit(cache=True)
-def _wave_loads(xs, dx, ys, zs, npts, tab, lim, p, m, line, s, f, wave, work):
+def _wave_loads(xs, dx, ys, zs, npts, tab, lim, p, m, line, decay, s, f, wave, work):
     """FK + HS loads ``f`` (6,) about G in the heading frame for the wave line ``line`` at this time:
     the stations' wave (``_station_wave``), the sections (``_fkhs``, the wave heading relative to the
     ship beta - psi) and their tilt (``_tilt_loads``). Returns False if a station left the table."""
-    inside = _station_wave(xs, p, m, s, line, wave)
+    inside = _station_wave(xs, p, m, s, line, decay, wave)
     rel = math.atan2(p[P_SIN_BETA], p[P_COS_BETA]) - s[S_YAW]
     cb = math.cos(rel)
     sb = math.sin(rel)
     h = _origin_height(s[S_Z], s[S_ROLL], s[S_PITCH], p[P_XG], p[P_ZG])
     _fkhs(xs, dx, ys, zs, npts, tab, lim, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], h, s[S_ROLL], s[S_PITCH],
-          cb, sb, wave[:, :4] if m[M_CURVED] != 0.0 else wave[:, :2], f, work)
+          cb, sb, wave[:, :_wave_columns(m, decay)], f, work)
     if m[M_KEEL_LINE] != 0.0:
         _tilt_loads(xs, dx, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], m[M_WL_HEIGHT], s[S_ROLL], s[S_PITCH], cb, sb, line,
-                    m, wave, work, f)
+                    m, decay, wave, work, f)
     return inside
 
 
 @njit(cache=True)
-def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, delta, ds, f, wave, work, mq, r, modes):
-    """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 3) at this time and
+def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, decay, s, delta, ds, f, wave, work, mq, r,
+          modes):
+    """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 3 + 2 r) at this time and
     the rudder angle ``delta``; the FK + HS loads see the wave heading relative to the ship,
     beta - psi; ``modes`` the discrete modes (``_modes``; the rudder rate is not written here). Returns
     False if a station left the wave table."""
-    inside = _wave_loads(xs, dx, ys, zs, npts, tab, lim, p, m, line, s, f, wave, work)
+    inside = _wave_loads(xs, dx, ys, zs, npts, tab, lim, p, m, line, decay, s, f, wave, work)
     _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes)
     for j in range(6):
         ds[j] = s[S_RATE + j]
@@ -663,7 +708,7 @@ def _stage(a, j, n, dt, theta, sub, s, helm, modes, ds, f, wave, work, mq, r):
     j + 2 at 0, 1/2, 1; between them the rows' quadratic interpolation in time, written into
     ``sub``) with the modes held: the rudder rate of ``_gear_rate``. Returns False if a station left
     the wave table. ``a``: the arguments of ``_simulate6`` up to ``ltab``."""
-    xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab = a
+    xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay = a
     m[M_XI_TIME] = (n + theta) * dt
     if theta == 0.0:
         line = ltab[j]
@@ -677,12 +722,12 @@ def _stage(a, j, n, dt, theta, sub, s, helm, modes, ds, f, wave, work, mq, r):
         l1 = -4.0 * theta * (theta - 1.0)
         l2 = 2.0 * theta * (theta - 0.5)
         for a in range(sub.shape[0]):
-            for b in range(3):
+            for b in range(sub.shape[1]):
                 sub[a, b] = l0 * ltab[j, a, b] + l1 * ltab[j + 1, a, b] + l2 * ltab[j + 2, a, b]
         line = sub
     nf = foils.shape[0]
-    ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, s, s[S_RUDDER], ds, f, wave, work, mq, r,
-               modes)
+    ok = _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, decay, s, s[S_RUDDER], ds, f, wave, work,
+               mq, r, modes)
     ds[S_RUDDER] = _gear_rate(m, s, helm, modes[nf], modes[nf + 1])
     return ok
 
@@ -728,9 +773,10 @@ def _hermite_state(c, h, sa, ka, sb, kb, out):
 
 
 @njit(cache=True, nogil=True)
-def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, nsteps, s0, phi_cap, out):
-    """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints, 3)
-    the wave line table (eta, S, dS/dxi) on the half-step grid. The rudder angle is a state of the
+def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay, dt, nsteps, s0, phi_cap, out):
+    """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints,
+    3 + 2 r) the wave line table (eta, S, dS/dxi[, the pressure-decay term's pairs]) on the half-step grid
+    and ``decay`` (nst, r) its station weights (``_station_wave``). The rudder angle is a state of the
     RK4; the zig-zag helm switches at the steps. ``out`` (nsteps + 1, state size) receives the
     states; ``m[M_XI_TIME]`` is set stage by stage (``m`` is the caller's working copy). Returns
     (index of the last step done, status: OK, CAPSIZED (|roll| > phi_cap) or LEFT_TABLE).
@@ -757,7 +803,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
     r = np.empty(6)
     nst = xs.shape[0]
     work = np.empty((nst, 5))
-    wave = np.empty((nst, 5))
+    wave = np.empty((nst, 8))
     sub = np.empty_like(ltab[0])
     nf = foils.shape[0]
     modes = np.empty(nf + 2, np.int64)
@@ -767,7 +813,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, dt, ns
         out[0, q] = s0[q]
     none = np.full(nf + 2, -9, np.int64)
     _modes(m, foils, s, s[S_HELM], none, modes)
-    a = (xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab)
+    a = (xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay)
     for n in range(nsteps):
         j = 2 * n
         helm = _helm(m, s[S_YAW], s[S_HELM])

@@ -87,12 +87,13 @@ def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg
 
 def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | None = None,
                   tables: tuple[int, int] = (181, 101), radiation: xr.Dataset | None = None,
-                  waterline: str = "planar") -> SixDof:
+                  waterline: str = "planar", dphi_dzdt: bool = False) -> SixDof:
     """The ship (optionally loaded to ``kg`` [m]) ready for 6-DOF records at ``speed_kn`` [kn] in waves
     of ``heading_deg`` [degree] relative to the course (0 following), with its config coefficients
     and, if the ship asks for it, the heave-pitch radiation memory (from the ``radiation`` step's
     dataset ``radiation``, or computed now: :func:`stabflow.dynamics.radiation.ship_memory`);
-    ``waterline`` as :func:`stabflow.dynamics.simulate`."""
+    ``waterline`` and ``dphi_dzdt`` (the incident pressure's decay with depth) as
+    :func:`stabflow.dynamics.simulate`."""
     from stabflow.dynamics.radiation import ship_memory
 
     s = ship.modified(kg=kg) if kg is not None else ship
@@ -102,7 +103,7 @@ def six_dof_model(ship: Ship, heading_deg: float, speed_kn: float, kg: float | N
     co = coefficients(s, sec, st, None, speed=speed_kn * KNOT)
     return build_six_dof(sec, st, co, s.rho, heading_deg, speed_kn * KNOT, manoeuvring_from_ship(s, sec, st),
                          tables=section_tables(sec, *tables), memory=ship_memory(ship, float(st["lcg"]), radiation),
-                         waterline=waterline)
+                         waterline=waterline, dphi_dzdt=dphi_dzdt)
 
 
 def heavy_kg(ship: Ship, above_waterline: float) -> float:
@@ -145,7 +146,7 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Datase
     bar = tqdm(total=len(loads) * len(cases), desc=f"{ship.name} paper 004 cases", disable=not progress)
     for i, (lname, kg) in enumerate(loads.items()):
         model = six_dof_model(ship, float(cfg["heading_deg"]), float(cfg["speed_kn"]), kg, radiation=radiation,
-                              waterline=cfg.get("waterline", "planar"))
+                              waterline=cfg.get("waterline", "planar"), dphi_dzdt=bool(cfg.get("dphi_dzdt", False)))
         kgs[i] = float(model.p[K.P_ZG])
         for j, (kind, lam, h) in enumerate(cases):
             if kind == "regular":
@@ -188,7 +189,7 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Datase
     for k in ev_names:
         out[k] = (("loading", "case"), ev[k].astype(int) if k in ("capsized", "broach", "surf_riding") else ev[k])
     out.attrs.update(ship=ship.name, speed_kn=float(cfg["speed_kn"]), heading_deg=float(cfg["heading_deg"]), dt=dt,
-                     waterline=cfg.get("waterline", "planar"),
+                     waterline=cfg.get("waterline", "planar"), dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))),
                      lcg=float(model.p[K.P_XG]),
                      reference="Lin, Meinhold & Salvesen (1998), USCG CG-D-17-98, Tables 3-4, Figs 7-14",
                      note="NaN after a record's end (capsize): see end_time")
@@ -211,7 +212,8 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
 
     if radiation is None and uses_memory(ship):
         radiation = ship_radiation(ship)
-    model = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), radiation=radiation)
+    model = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), radiation=radiation,
+                          dphi_dzdt=bool(cfg.get("dphi_dzdt", False)))
     mc = cfg["manoeuvres"]
     calm = ([], [], [])
     dt = float(cfg["dt"])
@@ -407,8 +409,9 @@ def _following_wave_load_rows(ship: Ship, model, lams, height: float, melnikov, 
     from stabflow.validation import Check
     from stabflow.validation.dynamics import NotApplicable, pressure_mesh
 
-    ref = ("surface-pressure integration on the hull mesh at the record's poses (exact surface, decay off "
-           "as the kernel's paper 000 eq 9)")
+    ref = ("surface-pressure integration on the hull mesh at the record's poses (exact surface, "
+           + ("the pressure decaying with depth as the kernel's dphi_dzdt)" if model.decay is not None
+              else "decay off as the kernel's paper 000 eq 9)"))
     rows = []
     h1 = "|kernel - pressure integration| / |pressure integration| (complex: amplitude and phase)"
     # (label, load, what, tolerance key, row name's measure)
@@ -502,7 +505,7 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
     lspec = cfg["loadings"][mc["loading"]]
     kg = heavy_kg(ship, float(lspec["kg_above_waterline"])) if "kg_above_waterline" in lspec else lspec.get("kg")
     base = six_dof_model(ship, 0.0, float(cfg["speed_kn"]), kg, radiation=radiation,
-                         waterline=cfg.get("waterline", "planar"))
+                         waterline=cfg.get("waterline", "planar"), dphi_dzdt=bool(cfg.get("dphi_dzdt", False)))
     sea = Seaway(kind=mc["sea"]["spectrum"], hs=float(mc["sea"]["hs"]), tp=mc["sea"].get("tp"),
                  n_components=int(mc["sea"].get("n_components", 220)))
     heads, speeds = np.asarray(mc["headings_deg"], float), np.asarray(mc["speeds_kn"], float)

@@ -170,7 +170,7 @@ def _sample(args, p, q0, rel, waves) -> np.ndarray:
 def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: float, speed: float, frequencies,
                    *, heave_range: float, roll_range_deg: float = 40.0, pitch_range_deg: float = 3.0,
                    calm_points=(9, 21, 9), wave_points=(5, 9, 5), phases: int = 16, steepness: float = 1 / 40,
-                   max_amplitude: float = 1.0, derivative_step: float = 0.02, depth=None,
+                   max_amplitude: float = 1.0, derivative_step: float = 0.02, decay=None,
                    second_order: bool = True) -> DerivativeModel:
     """Fit the derivative model (module doc) for the time-domain model (sections ``sec`` with
     ``tables``, parameter vector ``p``, equilibrium state ``s0``) at one wave heading [degree] and
@@ -194,8 +194,8 @@ def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: floa
     second_order : bool
         Add the mean of the coefficients' second-order part (phase mean / a^2 x a_n^2 summed over
         the components) to the simulated coefficients.
-    depth : array, optional
-        Sections' calm-water depths for the d2phi/dzdt term (as the time-domain model).
+    decay : SectionDecay, optional
+        The sections' pressure decay for the d2phi/dzdt term (as the time-domain model).
     """
     args = kernel_args(sec, tables)
     q0 = np.array([s0[K.S_Z], s0[K.S_ROLL], s0[K.S_PITCH]])
@@ -203,7 +203,7 @@ def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: floa
     steps = ranges * derivative_step
     # equilibrium and +-step along each coordinate for the value and the first derivatives
     star = np.vstack([np.zeros(3), np.diag(steps), -np.diag(steps)])
-    nq = 2 if depth is None else 3
+    nq = 2 if decay is None else 5
     calm_snap = np.zeros((1, len(sec.x), nq))
 
     def value_and_slopes(S):  # S (..., 7, 3) at the star points -> (..., 3) value, (..., 3, 3) d/dq_k
@@ -239,7 +239,7 @@ def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: floa
         lam = 2 * np.pi * G / w**2
         a = min(max_amplitude, 0.5 * steepness * lam)
         amps[m] = a
-        snaps = np.concatenate([station_wave_table([a], [w], [c], sec.x, heading_deg, 0.0, [0.0], depth)
+        snaps = np.concatenate([station_wave_table([a], [w], [c], sec.x, heading_deg, 0.0, [0.0], decay)
                                 for c in chi])
         W = np.moveaxis(_sample(args, p, q0, relw, snaps) - Rw0[None], -1, 1)  # (phases, 3, n)
         # the excitation (constant term) is the wave force at equilibrium; the other terms by least
@@ -299,7 +299,7 @@ def run_full(model, waves, heading_deg: float, duration: float, dt: float, s0=No
 
     nsteps = int(round(duration / dt))
     wtab = station_wave_table(*waves, model.sec.x, heading_deg, model.speed, np.arange(2 * nsteps + 1) * 0.5 * dt,
-                              model.depth)
+                              model.decay)
     out = np.empty((nsteps + 1, K.N_STATE))
     s = model.s0 if s0 is None else np.asarray(s0, float)
     last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, dt, 0, nsteps, s, np.radians(90.0), out,
@@ -436,7 +436,7 @@ def fit_for(model, fit: dict, frequencies=None) -> DerivativeModel:
                           roll_range_deg=fit["roll_range_deg"], pitch_range_deg=fit["pitch_range_deg"],
                           calm_points=tuple(fit["calm_points"]), wave_points=tuple(fit["wave_points"]),
                           phases=int(fit["phases"]), steepness=float(fit["steepness"]),
-                          max_amplitude=float(fit["max_amplitude"]), depth=model.depth,
+                          max_amplitude=float(fit["max_amplitude"]), decay=model.decay,
                           second_order=bool(fit["second_order"]))
 
 

@@ -40,20 +40,20 @@ class KernelLoads:
         (amp [m], omega [rad/s], phase [rad]) of the components.
     heading_deg, speed : float
         Wave heading [degree] and ship speed [m/s].
-    depth : ndarray, optional
-        Section depths for the d2phi/dzdt term (:func:`stabflow.dynamics.model.section_depths`);
-        None leaves it out (the default model).
+    decay : SectionDecay, optional
+        The sections' pressure decay for the d2phi/dzdt term
+        (:class:`stabflow.dynamics.model.SectionDecay`); None leaves it out (the default model).
     waterline : {"planar", "curved"}
         The wave across each section (:func:`stabflow.dynamics.simulate`).
     """
 
     def __init__(self, sec: Sections, rho: float, xg: float, zg: float, waves, heading_deg: float,
-                 speed: float = 0.0, depth: np.ndarray | None = None, waterline: str = "planar"):
+                 speed: float = 0.0, decay=None, waterline: str = "planar"):
         from stabflow.dynamics.model import _check_waterline
 
         self.curved = _check_waterline(waterline)
         self.sec, self.rho, self.xg, self.zg = sec, rho, xg, zg
-        self.waves, self.heading, self.speed, self.depth = waves, heading_deg, speed, depth
+        self.waves, self.heading, self.speed, self.decay = waves, heading_deg, speed, decay
         b = np.radians(heading_deg)
         self.cb, self.sb = np.cos(b), np.sin(b)
         self.args = kernel_args(sec)
@@ -63,7 +63,7 @@ class KernelLoads:
     def loads(self, t: float, h: float, phi: float, theta: float) -> np.ndarray:
         """(Fx, Fy, Fz, Mx, My, Mz) about G in earth axes [N, N m] at time ``t`` [s] for heave ``h``
         [m], roll ``phi`` and pitch ``theta`` [rad] (absolute, as the kernel's state)."""
-        w = station_wave_table(*self.waves, self.sec.x, self.heading, self.speed, np.array([float(t)]), self.depth,
+        w = station_wave_table(*self.waves, self.sec.x, self.heading, self.speed, np.array([float(t)]), self.decay,
                                curvature=self.curved)
         K._fkhs(*self.args, self.rho, G, self.xg, self.zg, h, phi, theta, self.cb, self.sb,
               np.ascontiguousarray(w[0]), self._out, self._work)

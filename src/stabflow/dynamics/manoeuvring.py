@@ -41,7 +41,7 @@ import xarray as xr
 from stabflow import StabflowError
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics import _kernels_6dof as K6
-from stabflow.dynamics.model import Coefficients, initial_state, parameters
+from stabflow.dynamics.model import Coefficients, initial_state, parameters, section_decay
 from stabflow.dynamics.rigid_body import SIX_DOF
 from stabflow.dynamics.roll_damping import NU, friction_radius_area, particulars, section_parameters
 from stabflow.dynamics.tables import SectionTables, kernel_args
@@ -269,6 +269,9 @@ class SixDof:
     #: the heave-pitch radiation memory (:class:`stabflow.dynamics.radiation.Memory`), None for the
     #: constant coefficients
     memory: object = None
+    #: the sections' pressure decay (:class:`stabflow.dynamics.model.SectionDecay`) for the
+    #: d2phi/dzdt term, None without it (paper 000's kernel)
+    decay: object = None
 
     def continuous_index(self) -> np.ndarray:
         """Indices of those states in the state vector (the roll amplitude, rudder and helm left out)."""
@@ -277,13 +280,14 @@ class SixDof:
 
 def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, heading_deg: float, speed: float,
                   man: Manoeuvring, tables: SectionTables | None = None, memory=None,
-                  waterline: str = "planar") -> SixDof:
+                  waterline: str = "planar", dphi_dzdt: bool = False) -> SixDof:
     """Assemble the 6-DOF kernel inputs for a ship (sections, statics, 3-DOF coefficients ``co``),
     water density ``rho`` [kg/m^3], wave heading [degree] relative to the course, commanded
     ``speed`` [m/s] and the manoeuvring description ``man``. With ``memory``
     (:class:`stabflow.dynamics.radiation.Memory`) heave and pitch radiate through it: their added mass
     is its A(inf) and their constant damping is replaced by its states (Cummins' equation).
-    ``waterline`` as :func:`stabflow.dynamics.simulate` (``"curved"``: exact clipping of the
+    ``waterline`` and ``dphi_dzdt`` (the incident wave's pressure decaying with depth in the
+    vertical force) as :func:`stabflow.dynamics.simulate` (``"curved"``: exact clipping of the
     sections, the tables unused in the waves). The hull derivatives are ``man.hull_sets``'s (the
     finely cut profile of :func:`stabflow.dynamics.broaching.manoeuvring_from_ship`); without
     them, those of ``sec``'s own stations, whose slender-body trailing edge moves with the station
@@ -313,6 +317,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     # the calm waterline's height above the keel at G's station, body axes (``_station_wave``)
     h0 = K._origin_height(rest[K.S_Z], 0.0, rest[K.S_PITCH], lcg, kg)
     m[K6.M_WL_HEIGHT] = (lcg * np.sin(rest[K.S_PITCH]) - h0) / np.cos(rest[K.S_PITCH])
+    decay = section_decay(sec, h0, float(rest[K.S_PITCH])) if dphi_dzdt else None
     if memory is not None:
         from stabflow.dynamics.radiation import memory_parameters, transom
 
@@ -379,7 +384,8 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     s0 = np.zeros(K6.N_STATE6 + (0 if memory is None else memory.n_states))
     s0[:K.N_STATE] = rest
     s0[K6.S_HELM] = 1.0
-    return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der, memory)
+    return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der, memory,
+                  decay)
 
 
 def hull_derivative_sets(sp: xr.Dataset) -> dict[str, dict | str]:
@@ -416,20 +422,28 @@ def with_hull_derivatives(model: SixDof, der: dict) -> SixDof:
     return replace(model, m=m, derivatives={k: der[k] for k in LINEAR_DERIVATIVES})
 
 
+def line_waves(model: SixDof, waves) -> LineWaves:
+    """:class:`~stabflow.waves.synthesis.LineWaves` of the components ``waves`` (amp, omega, phase)
+    for the model's heading, speed and pressure decay (its tables then carry the d2phi/dzdt term
+    and ``decay_weights`` the stations' weights of it for ``_kernels_6dof._simulate6``)."""
+    return LineWaves(*waves, model.heading_deg, model.speed, decay=model.decay)
+
+
 def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,
               points_per_wavelength: float = 8.0, dtype=np.float64, drift: float = 0.0):
-    """Line table (2 nsteps + 1, npoints, 3) of (eta, S, dS/dxi) from time ``t0`` [s] on the
+    """Line table (2 nsteps + 1, npoints, 3 + 2 r) of (eta, S, dS/dxi[, the pressure-decay term's
+    pairs]) from time ``t0`` [s] on the
     half-step grid, its first point and spacing (xi0, dxi) [m], and the number of intervals of a
     periodic table (0: not periodic). ``waves``: (amp, omega, phase) of the components, or a
     :class:`~stabflow.waves.synthesis.LineWaves` of them for the model's heading and speed (a
-    record's chunks).
+    record's chunks; :func:`line_waves`, whose ``decay_weights`` go with the table).
 
     The points cover ``centre`` +- ``reach`` [m] of the propagation coordinate at ``t0`` and move
     along it at ``drift`` [m/s] (the kernel's ``M_XI_RATE``; not for the periodic tables), spaced at the
     shortest component's wavelength / ``points_per_wavelength`` (cubic Hermite error about
     (k h)^4 / 384, 0.1 % at 8 points). A single regular wave is tabulated over one wavelength at 32
     points and calm water as zeros, both read periodically (any drift)."""
-    lw = waves if isinstance(waves, LineWaves) else LineWaves(*waves, model.heading_deg, model.speed)
+    lw = waves if isinstance(waves, LineWaves) else line_waves(model, waves)
     t_half = t0 + np.arange(2 * nsteps + 1) * 0.5 * dt
     if len(lw.amp) == 0:
         return np.zeros((len(t_half), 2, 3)), 0.0, 1.0, 1
@@ -525,7 +539,8 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
     hull = float(np.max(np.abs(model.sec.x - xg)))
     cb, sb = np.cos(np.radians(model.heading_deg)), np.sin(np.radians(model.heading_deg))
     args = kernel_args(model.sec, model.tables)
-    lw = LineWaves(*waves, model.heading_deg, model.speed)
+    lw = line_waves(model, waves)
+    weights = np.ascontiguousarray(lw.decay_weights)
     n0, status = 0, K6.OK
     with one_blas_thread():  # held for the record: the chunks' tables then skip its setting
         while n0 < nsteps and status == K6.OK:
@@ -546,7 +561,7 @@ def run_six_dof(model: SixDof, waves, duration: float, dt: float, *, phi_cap_deg
                 m = model.m.copy()
                 m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = xi0, h, wrap
                 m[K6.M_XI_RATE] = 0.0 if wrap else rate
-                done, status = K6._simulate6(*args, model.p, m, model.foils, model.strips, ltab, dt, n1 - n0, s,
+                done, status = K6._simulate6(*args, model.p, m, model.foils, model.strips, ltab, weights, dt, n1 - n0, s,
                                              np.radians(phi_cap_deg), out[n0:n1 + 1])
                 if status != K6.LEFT_TABLE:
                     break
@@ -598,15 +613,15 @@ def _linear_system(model: SixDof, eps: float = 1e-6):
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = 0.0, 1.0, 1.0
     nst = len(model.sec.x)
     # the foils' lift branches from their angles of attack (-1), as the kernel's modes at a step's start
-    scratch = (np.zeros(6), np.zeros((nst, 5)), np.zeros((nst, 5)), np.zeros((6, 6)),
+    scratch = (np.zeros(6), np.zeros((nst, 8)), np.zeros((nst, 5)), np.zeros((6, 6)),
                np.zeros(6),
                np.full(len(model.foils) + 2, -1, np.int64))
 
     idx = model.continuous_index()
 
-    def rhs(s, delta, line=np.zeros((2, 3)), mm=m):
+    def rhs(s, delta, line=np.zeros((2, 3)), mm=m, decay=np.zeros((nst, 0))):
         ds = np.zeros(model.s0.size)
-        K6._rhs6(*args, model.p, mm, model.foils, model.strips, line, s, delta, ds, *scratch)
+        K6._rhs6(*args, model.p, mm, model.foils, model.strips, line, decay, s, delta, ds, *scratch)
         return ds[idx]
 
     s0 = model.s0
@@ -683,11 +698,13 @@ def linear_regular_response(model: SixDof, wavelength: float, amplitude: float =
     for t in (0.0, 0.5 * np.pi / we):
         lines = []
         for a in (eps, -eps):
-            tab, _, _, _ = wave_line(model, (np.array([a]), np.array([w]), np.array([-k * xi_g])), t, 0, 1.0, 0.0, 0.0)
-            lines.append(np.ascontiguousarray(tab[0]))
+            lw = line_waves(model, (np.array([a]), np.array([w]), np.array([-k * xi_g])))
+            tab, _, _, _ = wave_line(model, lw, t, 0, 1.0, 0.0, 0.0)
+            lines.append((np.ascontiguousarray(tab[0]), np.ascontiguousarray(lw.decay_weights)))
         mm = model.m.copy()
         mm[K6.M_XI0], mm[K6.M_DXI], mm[K6.M_WRAP] = 0.0, wavelength / 32, 32
-        f.append((rhs(model.s0, 0.0, lines[0], mm) - rhs(model.s0, 0.0, lines[1], mm)) / (2 * eps))
+        f.append((rhs(model.s0, 0.0, lines[0][0], mm, lines[0][1])
+                  - rhs(model.s0, 0.0, lines[1][0], mm, lines[1][1])) / (2 * eps))
     # forcing f_c cos(w_e t) + f_s sin(w_e t) = Re[(f_c - i f_s) exp(i w_e t)]
     n = M.shape[0]
     F = np.zeros(n, complex)

@@ -233,18 +233,121 @@ def ikeda_roll_damping(ship: Ship, sec: Sections, st: xr.Dataset, m44: float, c4
     return float(tab["b1"][-1]), float(tab["b2"][-1]), tab["b2"].values[:-1].copy()
 
 
-def section_depths(sec: Sections, h0: float, th0: float) -> np.ndarray:
-    """Calm-water mean depth of each section (area / waterline breadth) [m], for the d2phi/dzdt term."""
-    from stabflow.geometry._kernels import _section
+#: horizontal slices per section for :class:`SectionDecay` (exact where the width is linear across
+#: a slice: everywhere on a polygon but in the slices holding its vertices)
+DECAY_SLICES = 64
 
-    ct, st = np.cos(th0), np.sin(th0)
-    out = np.zeros(len(sec.x))
-    for i in range(len(sec.x)):
-        c = st * sec.x[i] - h0
-        A, _, _ = _section(sec.y[i], sec.z[i], sec.n[i], 0.0, ct, c)
-        b = 2 * sec.half_breadth(i, c / ct)
-        out[i] = A / b if b > 0 else 0.0
-    return out
+
+class SectionDecay:
+    """The calm-water sections' area average of the incident wave's pressure decay,
+    F_i(k) = (1 / A_i) int_{A_i} e^(k z) dA (z below the calm waterline, deep water), for the
+    d2(phi0)/dz dt term of the volume-based vertical force, and of the horizontal pressure
+    gradient (F_i and its first moment about the centroid, :meth:`moments`).
+
+    Why this average: the linear Froude-Krylov heave force of a section is
+    rho g a cos(psi) (b - k int_A e^(k z) dA) (Gauss's theorem on the section, b the waterline
+    breadth), and the volume-based force is rho g (A + b eta) plus the term
+    rho A d2phi0/dzdt: with d2phi0/dzdt = -g sum_n a_n k_n F_i(k_n) cos(psi_n) it is that force
+    exactly for any section shape (a bulb, a skeg). Likewise the horizontal FK force is
+    -rho g a k sin(psi) A F_i (the pressure gradient's area integral) and its moment about the
+    centroid's height -rho g a k sin(psi) A Z_i. For a rectangle of draft T, F = (1 - e^(-k T)) /
+    (k T). (Until 2026-12-05 the term used that rectangle formula with T = A / b, which a bulbous
+    bow's small waterline breadth turned into 142-1806 m on the DTC and 1238 m on the trawler: no
+    decay at those stations.)
+
+    Parameters
+    ----------
+    sec : Sections
+    h0 : float
+        Calm-water height of the body origin [m] (``_kernels._origin_height``).
+    th0 : float
+        Calm-water trim [rad].
+    slices : int
+        Horizontal slices per section.
+    """
+
+    def __init__(self, sec: Sections, h0: float, th0: float, slices: int = DECAY_SLICES):
+        from stabflow.geometry._kernels import _section_moments
+
+        ct, st = np.cos(th0), np.sin(th0)
+        nst = len(sec.x)
+        self.slice_area = np.zeros((nst, slices))  # slice areas [m^2]
+        self.slice_depth = np.zeros((nst, slices))  # slice mid-heights below the calm waterline [m] (< 0)
+        self.slice_offset = np.zeros((nst, slices))  # slice centroid - mid-height [m]
+        self.half_height = np.zeros(nst)  # slices' half height [m]
+        self.slice_yy = np.zeros((nst, slices))  # slice int y^2 dA [m^4]
+        for i in range(nst):
+            n = sec.n[i]
+            c = st * sec.x[i] - h0  # calm waterline b z = c in the section's plane (a = 0, b = cos th0)
+            zw = c / ct
+            lo = float(np.min(sec.z[i, :n]))
+            if lo >= zw:
+                continue
+            levels = np.linspace(lo, zw, slices + 1)
+            a = np.empty(slices + 1)
+            m = np.empty(slices + 1)
+            yy = np.empty(slices + 1)
+            for j, z in enumerate(levels):
+                r = _section_moments(sec.y[i], sec.z[i], n, 0.0, 1.0, z)
+                a[j], m[j], yy[j] = r[0], r[2], r[3]
+            dA = np.diff(a)
+            self.slice_yy[i] = np.diff(yy)
+            zm = 0.5 * (levels[1:] + levels[:-1])
+            with np.errstate(invalid="ignore", divide="ignore"):
+                zc = np.where(dA > 0, np.diff(m) / np.where(dA > 0, dA, 1.0), zm)
+            self.slice_area[i] = dA
+            self.slice_depth[i] = (zm - zw) * ct
+            self.slice_offset[i] = (zc - zm) * ct
+            self.half_height[i] = 0.5 * (zw - lo) / slices * ct
+        self.total = self.slice_area.sum(axis=1)  # section areas [m^2]
+
+    def __call__(self, k) -> np.ndarray:
+        """F_i(k_n) (nst, nc) for wave numbers ``k`` (nc,) [1/m]; 1 at a dry station."""
+        return self.moments(k)[0]
+
+    def moments(self, k) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(F_i(k_n), Z_i(k_n), Y_i(k_n)), each (nst, nc), for wave numbers ``k`` (nc,) [1/m]: the
+        area averages of e^(k z) [-], of (z - z_c) e^(k z) [m] (z_c the section's centroid) and of
+        y^2 e^(k z) [m^2] (F = 1, Z = Y = 0 at a dry station). Z / F is the height of the horizontal
+        pressure gradient's resultant above the centroid (it acts higher, where the pressure has
+        decayed less); Y gives the roll moment of the vertical pressure gradient's variation across
+        the beam (``_kernels._fkhs``). Y takes each slice's int y^2 dA at its mid-height with the
+        slice's mean of e^(k z) (relative error about (k h)^2 / 6 times the slice's change of
+        width, h the half height: 1e-4 at k h = 0.03)."""
+        k = np.atleast_1d(np.asarray(k, float))
+        nst = self.slice_area.shape[0]
+        F = np.ones((nst, len(k)))
+        Z = np.zeros((nst, len(k)))
+        Y = np.zeros((nst, len(k)))
+        wet = self.total > 0
+        # a slice of half height h, area dA and centroid c above its middle z_m, its width linear in z:
+        # int e^(k z) w dz = e^(k z_m) dA [s1(x) + 3 (c / h) s2(x)], x = k h, s1 = sinh(x) / x,
+        # s2 = s1' = (x cosh x - sinh x) / x^2; its k-derivative, int z e^(k z) w dz, is
+        # e^(k z_m) dA [z_m (s1 + 3 (c / h) s2) + h (s2 + 3 (c / h) s2')], s2' = s1 - 2 s2 / x
+        h = self.half_height[wet][:, None, None]
+        x = h * k[None, None, :]
+        small = x < 1e-3
+        xs = np.where(small, 1.0, x)
+        s1 = np.where(small, 1.0 + x**2 / 6.0, np.sinh(xs) / xs)
+        s2 = np.where(small, x / 3.0 + x**3 / 30.0, (xs * np.cosh(xs) - np.sinh(xs)) / xs**2)
+        d2 = np.where(small, 1.0 / 3.0 + x**2 / 10.0, s1 - 2.0 * s2 / xs)
+        zm = self.slice_depth[wet][:, :, None]
+        dA = self.slice_area[wet][:, :, None]
+        c = 3.0 * self.slice_offset[wet][:, :, None] / h
+        e = np.exp(zm * k[None, None, :]) * dA
+        area = self.total[wet][:, None]
+        F[wet] = np.sum(e * (s1 + c * s2), axis=1) / area
+        first = np.sum(e * (zm * (s1 + c * s2) + h * (s2 + c * d2)), axis=1) / area
+        zc = np.sum(self.slice_area[wet] * (self.slice_depth[wet] + self.slice_offset[wet]), axis=1) / self.total[wet]
+        Z[wet] = first - zc[:, None] * F[wet]
+        Y[wet] = np.sum(np.exp(zm * k[None, None, :]) * self.slice_yy[wet][:, :, None] * s1, axis=1) / area
+        return F, Z, Y
+
+
+def section_decay(sec: Sections, h0: float, th0: float) -> SectionDecay:
+    """:class:`SectionDecay` of ``sec`` at the calm-water pose (origin height ``h0`` [m], trim
+    ``th0`` [rad])."""
+    return SectionDecay(sec, h0, th0)
 
 
 @dataclass(frozen=True)
@@ -355,10 +458,10 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
     h0 = K._origin_height(rest[K.S_Z], 0.0, th0, lcg, kg)
     nsteps = int(round(duration / dt))
     t_half = np.arange(2 * nsteps + 1) * 0.5 * dt
-    depth = section_depths(sec, h0, th0) if dphi_dzdt else None
+    decay = section_decay(sec, h0, th0) if dphi_dzdt else None
     amp, omega, phase = waves
     if len(amp):
-        wtab = station_wave_table(amp, omega, phase, sec.x, heading_deg, speed, t_half, depth, curvature=curved)
+        wtab = station_wave_table(amp, omega, phase, sec.x, heading_deg, speed, t_half, decay, curvature=curved)
     else:
         wtab = np.zeros((len(t_half), len(sec.x), 2))
     p = parameters(co, rho, lcg, kg, heading_deg)

@@ -54,6 +54,7 @@ from stabflow.dynamics import _kernels as K
 from stabflow.dynamics import _kernels_6dof as K6
 from stabflow.dynamics.manoeuvring import SixDof, ittc57_friction, simulate_six_dof
 from stabflow.dynamics.tables import kernel_args
+from stabflow.waves.synthesis import station_wave_table
 
 
 def resistance(model: SixDof, u):
@@ -63,8 +64,8 @@ def resistance(model: SixDof, u):
 
 
 def surge_force(model: SixDof, wavelength: float, height: float, n: int = 72) -> tuple[float, float]:
-    """Amplitude f [N] and phase e [rad] of the Froude-Krylov surge force in a regular following wave
-    on the hull held at its calm-water equilibrium, F_x = -f sin(k x + e) with x the crest's
+    """Amplitude f [N] and phase e [rad] of the Froude-Krylov surge force (with the model's pressure
+    decay, if any) in a regular following wave on the hull held at its calm-water equilibrium, F_x = -f sin(k x + e) with x the crest's
     position aft of G's station (first harmonic of n crest positions)."""
     k = 2 * np.pi / wavelength
     a = 0.5 * height
@@ -76,10 +77,11 @@ def surge_force(model: SixDof, wavelength: float, height: float, n: int = 72) ->
     xc = np.arange(n) * wavelength / n
     work = np.empty((len(xs), 5))
     out = np.empty(6)
+    w = np.sqrt(G * k)
     for j, x0 in enumerate(xc):
-        # crest at x = -x0 relative to the frame origin: eta = a cos(k (x + x0))
-        ph = k * (xs + x0)
-        wave = np.column_stack([a * np.cos(ph), -a * k * np.sin(ph)])
+        # crest at x = -x0 relative to the frame origin: eta = a cos(k (x + x0)) (with the model's
+        # pressure decay, if any, the wave's columns of it)
+        wave = station_wave_table([a], [w], [k * x0], xs, 0.0, 0.0, [0.0], model.decay)[0]
         K._loads(*kernel_args(model.sec, model.tables), p, wave, s, out, work)
         fx[j] = out[0]
     # F = -f sin(k x0 + e) = -f cos(e) sin(k x0) - f sin(e) cos(k x0)
@@ -212,7 +214,8 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
     ship must be surging periodically there (the waves overtaking it by about a wavelength each
     encounter period, not captured: ValueError). At each pose the kernel's loads (``_kernels_6dof._wave_loads``, as the
     record's right-hand side) and :class:`stabflow.dynamics.pressure.PressureModel`'s (exact surface,
-    decay off as the kernel's eq 9; the body origin moved to where the pose puts it) are formed.
+    decay off as the kernel's eq 9, or on for a model with the pressure-decay term
+    (``dphi_dzdt``); the body origin moved to where the pose puts it) are formed.
 
     Returns the mean and first-harmonic amplitude at the surging motion's encounter frequency
     (``encounter_frequency`` [rad/s], lower than at the commanded speed) of the surge force
@@ -222,7 +225,7 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
     pitch amplitude ``pitch_deg``.
     The mean surge force is the second-order force that, with the resistance, sets the
     surf-riding threshold."""
-    from stabflow.dynamics.manoeuvring import run_six_dof, wave_line
+    from stabflow.dynamics.manoeuvring import line_waves, run_six_dof, wave_line
     from stabflow.dynamics.pressure import PressureModel
 
     if model.heading_deg != 0.0:
@@ -254,18 +257,20 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
     we = 2 * np.pi * periods / (t[pick[-1] + 1] - t[pick[0]])  # the surging motion's encounter frequency
     p = m.p
     xg, zg, rho = float(p[K.P_XG]), float(p[K.P_ZG]), float(p[K.P_RHO])
-    pm = PressureModel(vertices, faces, rho, xg, zg, waves, 0.0, speed, decay=False)
+    pm = PressureModel(vertices, faces, rho, xg, zg, waves, 0.0, speed, decay=m.decay is not None)
     args = kernel_args(m.sec, m.tables)
     nst = len(m.sec.x)
-    wave, work, f = np.empty((nst, 5)), np.empty((nst, 5)), np.empty(6)
+    wave, work, f = np.empty((nst, 8)), np.empty((nst, 5)), np.empty(6)
     loads = np.empty((2, len(pick), 3))
     # the sampled steps' wave (one periodic table, its rows on the half-step grid from the first)
-    line, xi0, h, wrap = wave_line(m, waves, t[pick[0]], len(pick) - 1, dt, 0.0, 0.0)
+    lw = line_waves(m, waves)
+    line, xi0, h, wrap = wave_line(m, lw, t[pick[0]], len(pick) - 1, dt, 0.0, 0.0)
+    weights = np.ascontiguousarray(lw.decay_weights)
     mm = m.m.copy()
     mm[K6.M_XI0], mm[K6.M_DXI], mm[K6.M_WRAP], mm[K6.M_XI_RATE] = xi0, h, wrap, 0.0
     for j, i in enumerate(pick):
         s = states[i]
-        K6._wave_loads(*args, p, mm, line[2 * j], s, f, wave, work)
+        K6._wave_loads(*args, p, mm, line[2 * j], weights, s, f, wave, work)
         loads[0, j] = f[[0, 2, 4]]
         th, ph = s[K.S_PITCH], s[K.S_ROLL]
         # the body origin's horizontal position: G's less R (x_G, 0, z_G)'s (pitch only: no yaw, sway)

@@ -24,7 +24,7 @@ import xarray as xr
 from stabflow.config import Ship
 from stabflow.dynamics import coefficients
 from stabflow.dynamics._kernels import N_STATE, P_G, S_PITCH, S_RATE, S_ROLL, S_Z, _simulate, _simulate_batch
-from stabflow.dynamics.model import initial_state, parameters, section_depths
+from stabflow.dynamics.model import initial_state, parameters, section_decay
 from stabflow.dynamics.rigid_body import lateral_specific_force
 from stabflow.dynamics.tables import SectionTables, kernel_args, section_tables
 from stabflow.constants import KNOT
@@ -52,7 +52,8 @@ class Model:
     tables: SectionTables
     p: np.ndarray
     s0: np.ndarray
-    depth: np.ndarray | None
+    #: the sections' pressure decay for the d2phi/dzdt term (``dphi_dzdt``), None without it
+    decay: object
     roll_period: float
     #: the 6-DOF inputs (``dof: 6`` conditions, :mod:`stabflow.dynamics.manoeuvring`), None for 3-DOF
     six: object = None
@@ -100,7 +101,7 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
     use_hydro = hydro if s.data["dynamics"].get("hydro") == "capytaine" else None
     co = coefficients(s, sec, st, use_hydro, speed=float(cond["speed_kn"]) * KNOT)
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
-    depth = section_depths(sec, h0, th0) if cond.get("dphi_dzdt", False) else None
+    decay = section_decay(sec, h0, th0) if cond.get("dphi_dzdt", False) else None
     tables = section_tables(sec, int(cond.get("table_angles", 181)), int(cond.get("table_levels", 101)))
     p = parameters(co, s.rho, float(st["lcg"]), float(st["kg"]), float(cond["heading_deg"]))
     six = None
@@ -117,9 +118,9 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
         six = build_six_dof(sec, st, co, s.rho, float(cond["heading_deg"]), float(cond["speed_kn"]) * KNOT,
                             manoeuvring_from_ship(s, sec, st), tables=tables,
                             memory=ship_memory(ship, float(st["lcg"]), radiation),
-                            waterline=cond.get("waterline", "planar"))
+                            waterline=cond.get("waterline", "planar"), dphi_dzdt=bool(cond.get("dphi_dzdt", False)))
     sea = Seaway.from_config(cond["sea"]) if "sea" in cond else None  # regular-wave studies have none
-    model = Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), depth, co.natural_period("roll"), six, co=co)
+    model = Model(s, cond, sea, sec, st, tables, p, initial_state(sec, st), decay, co.natural_period("roll"), six, co=co)
     if cond.get("model", "volume") == "derivative":
         if six is not None:
             from stabflow import StabflowError
@@ -140,7 +141,7 @@ def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
     amp, w, ph = model.sea.components(model.cond["seed"], record)
     t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
     return station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, t_half,
-                              model.depth, dtype=dtype, curvature=model.curved)
+                              model.decay, dtype=dtype, curvature=model.curved)
 
 
 def record_table(model: Model, record: int):

@@ -122,7 +122,7 @@ def sub_step(model: Model, components, s: np.ndarray, t0: float, tau: float) -> 
                         0, 1, s, np.inf, out)
         return out[1]
     amp, w, ph = components
-    tab = station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, times, model.depth,
+    tab = station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, times, model.decay,
                              dtype=np.float32, curvature=model.curved)
     _simulate(*kernel_args(model.sec, model.tables), model.p, tab, tau, 0, 1, np.asarray(s, float), np.inf, out,
               np.empty((0, 6)))

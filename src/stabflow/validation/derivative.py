@@ -56,7 +56,7 @@ def derivative_checks(model, dm: DerivativeModel, ds: xr.Dataset, small_height: 
         a = float(np.interp(w, dm.frequency, ds["fit_amplitude"].values))
         we = abs(float(encounter_frequency(w, model.speed, dm.heading_deg)))
         loads = KernelLoads(model.sec, model.ship.rho, lcg, kg, (np.array([a]), np.array([w]), np.array([0.0])),
-                            dm.heading_deg, model.speed, model.depth)
+                            dm.heading_deg, model.speed, model.decay)
         F = fk_excitation(loads, h0, th0, we)
         for k, f in ((0, "heave"), (2, "pitch")):
             T = np.interp(w, dm.frequency, dm.tf[:, k, j0].real) + 1j * np.interp(w, dm.frequency, dm.tf[:, k, j0].imag)

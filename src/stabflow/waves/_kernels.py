@@ -36,12 +36,14 @@ def _trig_table(we, t0, dt, out, j0=0):
 
 
 @njit(cache=True, nogil=True)
-def _line_coefficients(amp, k, phase, xi, uniform, out):
-    """Fill ``out`` (2 nc, 3 npoints) with the coefficients of (eta, S, dS/dxi) at the points ``xi``
-    [m] of the cos(we t) rows (first nc) and sin(we t) rows (last nc) of a line wave table: a
-    cos(k xi - we t + phase) = C cos(we t) + D sin(we t) with C = a cos P, D = a sin P,
-    P = k xi + phase; its slope S (C = -a k sin P, D = a k cos P) and dS/dxi (C = -a k^2 cos P,
-    D = -a k^2 sin P). Columns are point-major: 3 j + (0, 1, 2).
+def _line_coefficients(amp, k, phase, xi, uniform, dec, g, out):
+    """Fill ``out`` (2 nc, nq npoints), nq = 3 + 4 r, with the coefficients of (eta, S, dS/dxi[, P_j,
+    dP_j/dxi, Q_j, dQ_j/dxi for j < r]) at the points ``xi`` [m] of the cos(we t) rows (first nc) and
+    sin(we t) rows (last nc) of a line wave table: a cos(k xi - we t + phase) = C cos(we t) + D sin(we t)
+    with C = a cos P, D = a sin P, P = k xi + phase; its slope S (C = -a k sin P, D = a k cos P) and
+    dS/dxi (C = -a k^2 cos P, D = -a k^2 sin P); P_j = -g sum_n dec[n, j] cos(psi_n) and
+    Q_j = -sum_n dec[n, j] sin(psi_n) with their slopes (``dec`` (nc, r): the pressure decay's line
+    factors, ``synthesis.decay_factors``; ``g`` [m/s^2]). Columns are point-major: nq j + (0, 1, 2, ...).
 
     With ``uniform`` (equally spaced points) the phasor exp(i P) is advanced point to point by the
     constant rotation exp(i k h) and reset to the exact value every 32 points, as ``_trig_table``
@@ -49,6 +51,8 @@ def _line_coefficients(amp, k, phase, xi, uniform, out):
     loop, so that their independent recurrences overlap (each is a chain of dependent multiplies)."""
     nc = amp.shape[0]
     npt = xi.shape[0]
+    nr = dec.shape[1]
+    nq = 3 + 4 * nr
     h = xi[1] - xi[0] if npt > 1 else 0.0
     ak = np.empty(nc)
     ak2 = np.empty(nc)
@@ -67,15 +71,30 @@ def _line_coefficients(amp, k, phase, xi, uniform, out):
                 P = k[n] * xi[j] + phase[n]
                 c[n] = np.cos(P)
                 s[n] = np.sin(P)
+        q = nq * j
         for n in range(nc):
             cn = c[n]
             sn = s[n]
-            out[n, 3 * j] = amp[n] * cn
-            out[nc + n, 3 * j] = amp[n] * sn
-            out[n, 3 * j + 1] = -ak[n] * sn
-            out[nc + n, 3 * j + 1] = ak[n] * cn
-            out[n, 3 * j + 2] = -ak2[n] * cn
-            out[nc + n, 3 * j + 2] = -ak2[n] * sn
+            out[n, q] = amp[n] * cn
+            out[nc + n, q] = amp[n] * sn
+            out[n, q + 1] = -ak[n] * sn
+            out[nc + n, q + 1] = ak[n] * cn
+            out[n, q + 2] = -ak2[n] * cn
+            out[nc + n, q + 2] = -ak2[n] * sn
+            for r in range(nr):
+                d = dec[n, r]
+                gd = g * d
+                dk = d * k[n]
+                gdk = gd * k[n]
+                b = q + 3 + 4 * r
+                out[n, b] = -gd * cn  # P = -g d cos psi
+                out[nc + n, b] = -gd * sn
+                out[n, b + 1] = gdk * sn  # dP/dxi = g d k sin psi
+                out[nc + n, b + 1] = -gdk * cn
+                out[n, b + 2] = -d * sn  # Q = -d sin psi
+                out[nc + n, b + 2] = d * cn
+                out[n, b + 3] = -dk * cn  # dQ/dxi = -d k cos psi
+                out[nc + n, b + 3] = -dk * sn
             c[n] = cn * rr[n] - sn * ri[n]
             s[n] = cn * ri[n] + sn * rr[n]
 

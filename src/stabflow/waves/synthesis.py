@@ -10,9 +10,10 @@ Station i sits at earth (X, Y) = (U t + x_i, 0), so psi_n = k_n x_i cos(beta) - 
 
 d2(phi0)/dz dt at the surface is -g sum k a cos(psi) (Wheeler stretching). Its linear extrapolation
 over the section depth (paper 000 eq. 4) grows without bound for short waves; stabflow uses it
-averaged over the section's calm-water depth T_i with the exact exponential decay,
-s_n = (1 - exp(-k_n T_i)) / (k_n T_i): s -> 1 for long waves (the seed's term) and the term
-stays bounded, -> g a / T_i, for short ones.
+averaged over the section's calm-water area with the exact exponential decay,
+F_i(k_n) = (1 / A_i) int e^(k_n z) dA (:class:`stabflow.dynamics.model.SectionDecay`; for a
+rectangle of draft T, (1 - exp(-k T)) / (k T)): F -> 1 for long waves (the seed's term) and the
+term stays bounded for short ones; it makes the section's linear FK heave force exact.
 """
 
 from __future__ import annotations
@@ -117,16 +118,22 @@ def encounter_frequency(omega, speed: float, heading_deg: float):
     return omega - omega**2 / G * speed * np.cos(np.radians(heading_deg))
 
 
-def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=None,
+def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=None,
                        dtype=np.float64, curvature: bool = False) -> np.ndarray:
-    """(nt, nst, nq) table of (eta, S[, dphi_zt[, eta_xixi]]) at stations ``xs`` and equally spaced
+    """(nt, nst, nq) table of the stations' wave (eta, S[, the pressure decay's three columns][, eta_xixi]: the
+    layouts of ``dynamics._kernels``) at stations ``xs`` and equally spaced
     ``times``.
 
     S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
-    ``depth`` (nst,) are the sections' calm-water mean depths [m] for the d2phi/dzdt term (nq = 3);
+    ``decay`` (:class:`stabflow.dynamics.model.SectionDecay`: the sections' area averages F_i(k),
+    Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z)) adds the pressure's decay with
+    depth as four columns (nq = 6, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
+    -g sum_n a_n k_n F_i(k_n) cos psi_n, the area-averaged slope S_h = -sum a k F sin psi, its
+    moment about the centroid S_hz = -sum a k Z sin psi [m] and T_yy = sum a k^2 Y sin psi [m];
     None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
     propagation eta_xixi [1/m] for the curved waterline across each section
-    (``waterline="curved"``, nq = 4; the dphi_zt column is then zero without ``depth``). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
+    (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 7 with
+    ``decay``). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
     the table is one matrix product of the time factors (nt, 2 nc) with the station coefficients
     (2 nc, nst nq), in ``dtype`` (float32 halves the cost of long ensembles).
     """
@@ -142,15 +149,64 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, depth=N
     cP, sP = np.cos(P), np.sin(P)
     ak = amp * k
     cols = [(amp * cP, amp * sP), (-ak * sP, ak * cP)]  # eta = sum a cos psi, S = -sum a k sin psi
-    if depth is not None:
-        kt = k[None, :] * np.maximum(np.asarray(depth, float)[:, None], 1e-9)
-        smith = np.where(kt > 1e-9, -np.expm1(-kt) / kt, 1.0)
-        cols.append((-G * ak * smith * cP, -G * ak * smith * sP))
+    if decay is not None:
+        # dphi_zt = -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
+        # T_yy = sum a k^2 Y sin psi
+        F, Z, Y = decay.moments(k)
+        cols.append((-G * ak * F * cP, -G * ak * F * sP))
+        cols.append((-ak * F * sP, ak * F * cP))
+        cols.append((-ak * Z * sP, ak * Z * cP))
+        cols.append((ak * k * Y * sP, -ak * k * Y * cP))
     elif curvature:
         cols.append((np.zeros_like(cP), np.zeros_like(sP)))
     if curvature:
         cols.append((-ak * k * cP, -ak * k * sP))  # eta_xixi = -sum a k^2 cos psi
     return _time_series_table(we, times, cols, dtype)
+
+
+#: the pressure-decay terms of a line table (:class:`LineWaves` with ``decay``) are a rank-r
+#: factorisation whose error's standard deviation (random phases) is at most this fraction of the
+#: term's at every station, for each of F and Z (:func:`decay_factors`)
+DECAY_RANK_TOLERANCE = 0.01
+#: the largest rank (four table columns each)
+DECAY_RANK_MAX = 6
+
+
+def decay_factors(amp, k, decay):
+    """The stations' pressure-decay terms (``dynamics._kernels``'s layouts: dphi_zt, S_h, S_hz, T_yy)
+    as sums of r products of a station weight and a line quantity.
+
+    With F_i(k), Z_i(k), Y_i(k) of :class:`stabflow.dynamics.model.SectionDecay` ``decay``, the
+    terms -g sum_n a_n k_n F_i(k_n) cos psi_n, -sum_n a_n k_n F_i(k_n) sin psi_n,
+    -sum_n a_n k_n Z_i(k_n) sin psi_n and sum_n a_n k_n^2 Y_i(k_n) sin psi_n need
+    a_n k_n (F_i, Z_i, k_n Y_i)(k_n) ~ sum_j (WF_ij, WZ_ij, WY_ij) C_nj: one truncated singular value
+    decomposition of the (component, 3 x station) matrix of the three, each station's column scaled
+    to unit norm. Its r is the least for which every column's residual norm over the components (the
+    standard deviation of the term's error over random phases) is within ``DECAY_RANK_TOLERANCE`` of
+    the column's norm, at most ``DECAY_RANK_MAX``. Returns the line factors C (nc, r) and the station
+    weights (nst, 3 r), WF, WZ then WY, each factor's sign chosen so that its weights WF sum to
+    >= 0 (one regular wave's weights then do not depend on its amplitude's sign)."""
+    amp = np.asarray(amp, float)
+    k = np.asarray(k, float)
+    F, Z, Y = decay.moments(k)  # (nst, nc) each
+    nst = F.shape[0]
+    M = np.concatenate([F, Z, Y * k[None, :]]).T * (amp * k)[:, None]  # (nc, 3 nst)
+    norm = np.sqrt(np.sum(M**2, axis=0))
+    live = norm > 0
+    Mn = M / np.where(live, norm, 1.0)
+    with one_blas_thread():
+        U, S, Vt = np.linalg.svd(Mn, full_matrices=False)
+    r = 0
+    if np.any(live):
+        kept = np.zeros(M.shape[1])
+        for r in range(1, min(DECAY_RANK_MAX, len(S)) + 1):
+            kept += (S[r - 1] * Vt[r - 1]) ** 2
+            if np.all(1.0 - kept[live] <= DECAY_RANK_TOLERANCE**2):
+                break
+    C = U[:, :r] * S[:r]
+    W = Vt[:r].T * norm[:, None]  # (3 nst, r)
+    flip = np.where(W[:nst].sum(axis=0) < 0, -1.0, 1.0)
+    return C * flip, np.ascontiguousarray(np.concatenate([W[b * nst:(b + 1) * nst] * flip for b in range(3)], axis=1))
 
 
 class LineWaves:
@@ -166,9 +222,15 @@ class LineWaves:
         Wave heading [degree] (0 following).
     speed : float
         Speed of the frame along x [m/s].
+    decay : SectionDecay, optional
+        The ship's sections' pressure decay (:class:`stabflow.dynamics.model.SectionDecay`): the
+        tables then carry r = ``decay_coef.shape[1]`` groups of four columns (:func:`decay_factors`),
+        P_j = -g sum_n C_nj cos psi_n, its slope dP_j/dxi, Q_j = -sum_n C_nj sin psi_n and dQ_j/dxi;
+        at station i, dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j and
+        T_yy = -sum_j WY_ij Q_j with ``decay_weights`` (nst, 3 r) = (WF, WZ, WY).
     """
 
-    def __init__(self, amp, omega, phase, heading_deg: float, speed: float):
+    def __init__(self, amp, omega, phase, heading_deg: float, speed: float, decay=None):
         self.amp = np.asarray(amp, dtype=float)
         self.omega = np.asarray(omega, float)
         self.phase = np.asarray(phase, float)
@@ -176,11 +238,21 @@ class LineWaves:
         self.speed = speed
         self.k = self.omega**2 / G
         self.we = encounter_frequency(self.omega, speed, heading_deg)
+        if decay is not None and len(self.amp):
+            self.decay_coef, self.decay_weights = decay_factors(self.amp, self.k, decay)
+        else:
+            self.decay_coef = np.zeros((len(self.amp), 0))
+            self.decay_weights = np.zeros((0 if decay is None else len(decay.total), 0))
+
+    @property
+    def columns(self) -> int:
+        """Columns of a table: eta, S, dS/dxi and the decay terms' groups of four."""
+        return 3 + 4 * self.decay_coef.shape[1]
 
     def table(self, xi, times, dtype=np.float64, drift: float = 0.0, uniform: bool | None = None,
               spaced: bool = False) -> np.ndarray:
-        """(nt, npoints, 3) table of (eta, S, dS/dxi) at the points ``xi`` [m] (moving along xi at
-        ``drift`` [m/s]) at ``times`` [s], as :func:`line_wave_table`; ``uniform`` (points equally
+        """(nt, npoints, columns) table of (eta, S, dS/dxi[, P_1, dP_1/dxi, Q_1, dQ_1/dxi, ...]) at the points ``xi`` [m]
+        (moving along xi at ``drift`` [m/s]) at ``times`` [s], as :func:`line_wave_table`; ``uniform`` (points equally
         spaced; None: found here) and ``spaced`` (times equally spaced, not checked) spare a
         caller who builds them so the checks."""
         xi = np.asarray(xi, float)
@@ -188,10 +260,12 @@ class LineWaves:
             uniform = _equally_spaced(xi, 1e-12)
         we = self.we - self.k * drift
         t_first = float(times[0]) if len(times) else 0.0
-        coef = np.empty((2 * len(self.amp), 3 * len(xi)), dtype=dtype)
+        nq = self.columns
+        coef = np.empty((2 * len(self.amp), nq * len(xi)), dtype=dtype)
         # equally spaced points (the 6-DOF tables): phasor recurrence along the line, as in time
-        _line_coefficients(self.amp, self.k, self.phase - self.k * drift * t_first, xi, uniform, coef)
-        return _time_series_product(we, times, coef, 3, spaced=spaced)
+        _line_coefficients(self.amp, self.k, self.phase - self.k * drift * t_first, xi, uniform, self.decay_coef, G,
+                           coef)
+        return _time_series_product(we, times, coef, nq, spaced=spaced)
 
 
 def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.float64,
