@@ -1,5 +1,8 @@
 """6-DOF speed and step-size convergence (issue 17). Run: python benchmarks/bench_six_dof.py [--ship trawler]
 
+The 6-DOF model carries the pressure's decay with depth as the pipeline's records do
+(``--no-dphi-dzdt``: paper 000's kernel without it).
+
 1. Step-size convergence: one record (Pierson-Moskowitz Hs 3.1 m, paper 004 IR-1 with the trawler,
    or ``--hs``, seed ``--seed``;
    the ensemble sea with DTMB 5415), 10 kn, waves 45 degree off the stern, autopilot on, at
@@ -84,6 +87,9 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=17, help="seed of the record's wave components")
     ap.add_argument("--radiation", help="the radiation step's NetCDF of a ship with the heave-pitch memory model "
                                         "(computed first when not given)")
+    ap.add_argument("--no-dphi-dzdt", dest="dphi", action="store_false",
+                    help="paper 000's kernel, without the pressure's decay with depth (the pipeline's 6-DOF "
+                         "records carry it)")
     a = ap.parse_args(argv)
     numba.set_num_threads(1)
     ship = load_ship(f"config/ships/{a.ship}.yaml")
@@ -92,13 +98,18 @@ def main(argv=None):
         import xarray as xr
 
         rad = xr.open_dataset(a.radiation).load()
-    model = six_dof_model(ship, 45.0, 10.0, radiation=rad)
+    model = six_dof_model(ship, 45.0, 10.0, radiation=rad, dphi_dzdt=a.dphi)
     if model.memory is not None:
         print(f"heave-pitch radiation memory: {len(model.memory.poles)} poles, {model.memory.n_states} states")
     sea = Seaway(kind="pierson_moskowitz", hs=a.hs) if a.ship == "trawler" else \
         Seaway(kind="bretschneider", hs=8.5, tp=15.0)
     waves = sea.components(a.seed, 0)
     print(f"{a.ship}: {len(model.sec.x)} stations, {len(waves[0])} wave components, {a.seconds:g} s records, one core")
+    if a.dphi:
+        r = manoeuvring.line_waves(model, waves).decay_coef.shape[1]
+        print(f"  pressure decay with depth: rank {r} ({3 + 4 * r} line-table columns against 3 without it)")
+    else:
+        print("  without the pressure's decay with depth (paper 000's kernel)")
     simulate_six_dof(model, waves, 5.0, 0.1)  # compile both kernels before timing
     three_dof_cpu(model, waves, 0.1, 5.0)
     ap_h = a.horizon
@@ -144,7 +155,7 @@ def main(argv=None):
     print(f"station-count convergence at dt {dts:g} s (reference: {counts[-1]} stations)")
     runs = {}
     for n in counts:
-        m = six_dof_model(ship.modified(stations=n), 45.0, 10.0, radiation=rad)
+        m = six_dof_model(ship.modified(stations=n), 45.0, 10.0, radiation=rad, dphi_dzdt=a.dphi)
         simulate_six_dof(m, waves, 5.0, dts)  # numba compiled already; warms the tables
         t0 = time.process_time()
         ds = simulate_six_dof(m, waves, a.seconds, dts)

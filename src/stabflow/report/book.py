@@ -491,7 +491,8 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
         der_rows.append(["used (with the given values)"] + [f"{float(d[f'derivative_{c}']):.4f}"
                                                             for c in LINEAR_DERIVATIVES]
                         + [f"{float(d['sway_yaw_eigenvalue']):+.3f}"])
-    return _render("broaching.md.j2", ship=ship, a=config["broaching"], rows=rows, foils=foils, derivatives=derivatives,
+    return _render("broaching.md.j2", ship=ship, a=config["broaching"], decay=bool(int(d.attrs.get("dphi_dzdt", 0))),
+                   rows=rows, foils=foils, derivatives=derivatives,
                    der_rows=der_rows,
                    man={"rows": man_rows, "length": L, "b_l": float(d.attrs.get("manoeuvre_breadth", np.nan)) / L,
                         "form_factor": float(mcfg.get("form_factor", 0.0)), "ap": mcfg.get("autopilot", {}),
