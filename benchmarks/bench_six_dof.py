@@ -44,14 +44,16 @@ from stabflow.waves.synthesis import station_wave_table  # noqa: E402
 
 
 def three_dof_cpu(model, waves, dt, seconds):
-    """CPU seconds of the 3-DOF kernel (wave table + RK4) for ``seconds`` of record."""
+    """CPU seconds of the 3-DOF kernel (wave table + RK4) for ``seconds`` of record, with the 6-DOF
+    model's pressure decay (or without, as it has) for a like-for-like figure."""
     n = int(round(seconds / dt))
     t_half = np.arange(2 * n + 1) * 0.5 * dt
     p = model.p.copy()
     p[K.P_FREE:K.P_FREE + 6] = (0, 0, 1, 1, 1, 0)
     out = np.empty((n + 1, K.N_STATE))
     t0 = time.process_time()
-    wtab = station_wave_table(*waves, model.sec.x, model.heading_deg, model.speed, t_half, dtype=np.float32)
+    wtab = station_wave_table(*waves, model.sec.x, model.heading_deg, model.speed, t_half, model.decay,
+                              dtype=np.float32)
     K._simulate(*kernel_args(model.sec, model.tables), p, wtab, dt, 0, n, model.s0[:K.N_STATE], np.radians(90.0),
                 out, np.empty((0, 6)))
     return time.process_time() - t0

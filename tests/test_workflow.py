@@ -159,12 +159,12 @@ def test_criteria_results_and_chapters(pipeline):
         assert {v for k, v in status.items() if k not in beam + routes + screening} == {"PASS"} and len(status) >= 13
     with xr.open_dataset(pipeline / "validation" / "wigley_criteria.nc") as ds:
         # the Wigley hull's linear beam-sea model against the time domain in the same beam sea:
-        # 0.5 deg within 3 % and 5 deg within 10 % (measured -0.39 % and +3.3 % with the DSA's
-        # pressure-decay term; -0.44 % and -0.26 % without it)
+        # 0.5 deg within 3 % and 5 deg within 10 % (measured -0.44 % and +1.9 % with the complete
+        # pressure decay of the DSA's runs; -0.44 % and -0.26 % without it)
         rows = [(str(s), str(k), float(v)) for n, s, k, v in zip(ds.name.values, ds.status.values, ds.kind.values,
                                                                   ds.value.values) if str(n).startswith("beam seas")]
         assert [r[:2] for r in rows] == [("PASS", "consistency")] * 2, rows
-        assert abs(rows[0][2]) < 0.01 and 0.02 < rows[1][2] < 0.05, rows
+        assert abs(rows[0][2]) < 0.01 and 0.01 < rows[1][2] < 0.03, rows
 
 
 def test_criteria_chapter_names_the_acceleration_failure(pipeline, tmp_path):

@@ -104,15 +104,15 @@ def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
     none = np.zeros((len(model.sec.x), 0))
     for flag, (X, Y) in ((1.0, placed), (0.0, axis.T)):
         m[K6.M_KEEL_LINE] = flag
-        wave = np.empty((len(model.sec.x), 8))
+        wave = np.empty((len(model.sec.x), K6.WAVE_BUFFER))
         assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], none, wave)
         _check_station_wave(wave, X, Y, amp, w, ph)
     # the planar waterline leaves the columns of the decay and eta_xixi as they were, the others the same
     m[K6.M_CURVED] = 0.0
     planar = np.full_like(wave, 7.0)
     assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], none, planar)
-    assert np.all(planar[:, 2:7] == 7.0)
-    assert np.array_equal(planar[:, [0, 1, 7]], wave[:, [0, 1, 7]])
+    assert np.all(planar[:, 2:K6.U_COLUMN] == 7.0)
+    assert np.array_equal(planar[:, [0, 1, K6.U_COLUMN]], wave[:, [0, 1, K6.U_COLUMN]])
 
 
 def _check_station_wave(wave, X, Y, amp, w, ph):
@@ -133,8 +133,8 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     """The pressure-decay columns of a model with ``dphi_dzdt`` (``SectionDecay``'s F, Z and Y) read
     from the line table's rank-r factorisation (``decay_factors``: 1 % tolerance on each station's
     error standard deviation) at displaced and yawed stations, against the direct sums: dphi_zt =
-    -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi and
-    T_yy = sum a k^2 Y sin psi, each within 2 % of its largest value (Hermite interpolation at 8 points per wavelength adds about 0.1 %). A
+    -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
+    T_yy = sum a k^2 Y sin psi and U_yy = -sum a k^2 Y cos psi, each within 2 % of its largest value (Hermite interpolation at 8 points per wavelength adds about 0.1 %). A
     regular wave's factorisation is exact (rank 1) and its station weights do not depend on the
     amplitude's sign."""
     from stabflow.waves.synthesis import DECAY_RANK_TOLERANCE
@@ -153,7 +153,7 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_KEEL_LINE] = xi0, h, 0.0
     s = model.s0.copy()
     s[K.S_X], s[K.S_Y], s[K.S_YAW] = 7.3, -4.1, np.radians(25.0)
-    wave = np.empty((len(sec.x), 8))
+    wave = np.empty((len(sec.x), K6.WAVE_BUFFER))
     assert K6._station_wave(sec.x, model.p, m, s, ltab[3], lw.decay_weights, wave)
     xg = model.p[K.P_XG]
     d = sec.x - xg
@@ -163,7 +163,8 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     psi = k * (X * np.cos(b) + Y * np.sin(b))[:, None] - (w - k * SPEED * np.cos(b)) * 0.75 + ph
     F, Z, Y = model.decay.moments(k)
     for col, exact in ((2, (-G * amp * k * F * np.cos(psi)).sum(1)), (3, (-amp * k * F * np.sin(psi)).sum(1)),
-                       (4, (-amp * k * Z * np.sin(psi)).sum(1)), (5, (amp * k * k * Y * np.sin(psi)).sum(1))):
+                       (4, (-amp * k * Z * np.sin(psi)).sum(1)), (5, (amp * k * k * Y * np.sin(psi)).sum(1)),
+                       (6, (-amp * k * k * Y * np.cos(psi)).sum(1))):
         assert np.max(np.abs(wave[:, col] - exact)) < 0.02 * np.max(np.abs(exact)), col
     # one regular wave: rank 1, exact, the weights the same whatever the amplitude's sign
     one, minus = (line_waves(model, (np.array([a]), w[:1], ph[:1])) for a in (0.5, -0.5))
@@ -172,6 +173,29 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     F1, Z1, Y1 = model.decay.moments(k[:1])
     np.testing.assert_allclose(one.decay_coef[0, 0] * one.decay_weights,
                                0.5 * k[0] * np.column_stack([F1, Z1, k[0] * Y1]), rtol=1e-10, atol=1e-14)
+
+
+def test_decay_factorisation_warns_when_its_rank_cap_is_not_enough(trawler, monkeypatch):
+    """``decay_factors`` with a PM-like spread of 20 components: within DECAY_RANK_TOLERANCE at its
+    chosen rank without a warning; capped at rank 1 it warns, naming the error left (the stations'
+    worst), rather than truncating silently."""
+    import warnings
+
+    from stabflow.dynamics.model import section_decay
+    from stabflow.waves import synthesis
+
+    ship, sec, st, co, tabs, ab = trawler
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    dec = section_decay(sec, h0, th0)
+    amp, k = np.full(20, 0.2), np.linspace(0.5, 2.0, 20) ** 2 / G
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        C, W = synthesis.decay_factors(amp, k, dec)
+    assert C.shape[1] > 1
+    monkeypatch.setattr(synthesis, "DECAY_RANK_MAX", 1)
+    with pytest.warns(RuntimeWarning, match=r"rank 1 \(DECAY_RANK_MAX\) leaves a [0-9.]+ % error"):
+        C, W = synthesis.decay_factors(amp, k, dec)
+    assert C.shape == (20, 1) and W.shape == (len(sec.x), 3)
 
 
 def test_line_table_phasor_recurrence_and_moving_points_against_direct_evaluation():
@@ -210,7 +234,7 @@ def test_station_wave_on_a_moving_line_table(trawler):
     m[K6.M_KEEL_LINE] = 0.0  # the stations on G's axis (the keel line's placement: the test above)
     s = model.s0.copy()
     s[K.S_X] = c * t1 / np.cos(b)  # drifted along x by c t1 in xi
-    wave = np.empty((len(model.sec.x), 8))
+    wave = np.empty((len(model.sec.x), K6.WAVE_BUFFER))
     none = np.zeros((len(model.sec.x), 0))
     assert K6._station_wave(model.sec.x, model.p, m, s, ltab[12], none, wave)  # row 12: t = 10 + 12 x 0.25 s
     X = s[K.S_X] + model.sec.x

@@ -27,9 +27,14 @@ import math
 import numpy as np
 from numba import njit
 
-from stabflow.dynamics._kernels import (N_STATE, P_ADDED_MASS, P_COS_BETA, P_G, P_RHO, P_SIN_BETA, P_XG, P_ZG, S_PITCH,
+from stabflow.dynamics._kernels import (DECAY_COLUMNS, N_STATE, P_ADDED_MASS, P_COS_BETA, P_G, P_RHO, P_SIN_BETA, P_XG, P_ZG, S_PITCH,
                                         S_RATE, S_ROLL, S_X, S_Y, S_YAW, S_Z, _fkhs, _generalized_system,
                                         _origin_height, _rotate, _solve_free, _update_amplitude)
+
+#: columns of the stations' wave buffer (``_station_wave``): ``_kernels``'s layouts (at most
+#: DECAY_COLUMNS + 1) and the stations' coordinate in the line table
+WAVE_BUFFER = DECAY_COLUMNS + 2
+U_COLUMN = DECAY_COLUMNS + 1
 
 # manoeuvring parameter vector ``m``
 M_SPEED = 0        # commanded speed U [m/s]: the frame of q moves with U along the mean course
@@ -131,10 +136,10 @@ def _hermite_slope(y0, d0, y1, d1, t, h):
 
 @njit(cache=True)
 def _station_wave(xs, p, m, s, line, decay, wave):
-    """Fill ``wave`` (nst, 8) with the stations' wave in ``_kernels``'s layout (``_wave_columns``) and u (eta_xixi = dS/dxi, the slope of S's Hermite
+    """Fill ``wave`` (nst, ``WAVE_BUFFER``) with the stations' wave in ``_kernels``'s layout (``_wave_columns``) and u (eta_xixi = dS/dxi, the slope of S's Hermite
     interpolant: 0.4 % at 8 points per wavelength where a linear one of the tabulated dS/dxi is 7.6 %
     low), at the stations' instantaneous positions from the line
-    table ``line`` (npoints, 3 + 2 r) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
+    table ``line`` (npoints, 3 + 4 r) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
     m[M_XI_TIME] + k m[M_DXI] (a table on a grid moving with the ship's drift). Returns False if a station lies outside the table (its
     value is then taken at the nearest end); a periodic table (``M_WRAP`` intervals, one regular
     wave, last point = first) is read modulo its period and never left.
@@ -158,14 +163,15 @@ def _station_wave(xs, p, m, s, line, decay, wave):
     fixed stations are (paper 000 section 3: the body origin held, its horizontal shift with the
     rotations left out), for the constrained-case comparison.
 
-    ``wave`` (nst, 8) receives (eta, S) in its first columns, then with the pressure decay
-    (``decay`` (nst, 3 r), r > 0: the station weights (WF, WZ, WY) of
+    ``wave`` (nst, ``WAVE_BUFFER``) receives (eta, S) in its first columns, then with the pressure
+    decay (``decay`` (nst, 3 r), r > 0: the station weights (WF, WZ, WY) of
     ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j,
-    S_hz = sum_j WZ_ij Q_j and T_yy = -sum_j WY_ij Q_j in columns 2-5 (P_j, Q_j in the table's
-    columns 3 + 4 j and 5 + 4 j, their slopes after each, Hermite as eta), and with the curved
-    waterline (``M_CURVED``) eta_xixi in column 3, or 6 with the decay: the first ``_wave_columns``
-    columns are ``_kernels._fkhs``'s layout. Column 7 receives u, the station's coordinate in the
-    table [intervals] (``_tilt_loads``). Columns not written are left as they were."""
+    S_hz = sum_j WZ_ij Q_j, T_yy = -sum_j WY_ij Q_j and U_yy = sum_j WY_ij P_j / g in columns 2-6
+    (P_j, Q_j in the table's columns 3 + 4 j and 5 + 4 j, their slopes after each, Hermite as eta),
+    and with the curved waterline (``M_CURVED``) eta_xixi in column 3, or 7 with the decay: the
+    first ``_wave_columns`` columns are ``_kernels._fkhs``'s layout. Column ``U_COLUMN`` receives
+    u, the station's coordinate in the table [intervals] (``_tilt_loads``). Columns not written are
+    left as they were."""
     xg = p[P_XG]
     cb = p[P_COS_BETA]
     sb = p[P_SIN_BETA]
@@ -191,7 +197,8 @@ def _station_wave(xs, p, m, s, line, decay, wave):
     wrap = m[M_WRAP]
     curved = m[M_CURVED] != 0.0
     nr = decay.shape[1] // 3
-    ic = 6 if nr > 0 else 3
+    ic = DECAY_COLUMNS if nr > 0 else 3
+    ig = 1.0 / p[P_G]
     if curved and nr == 0:
         for i in range(xs.shape[0]):
             wave[i, 2] = 0.0
@@ -217,6 +224,7 @@ def _station_wave(xs, p, m, s, line, decay, wave):
             sh = 0.0
             shz = 0.0
             tyy = 0.0
+            uyy = 0.0
             for j in range(nr):
                 c = 3 + 4 * j
                 pj = _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], t, h)
@@ -225,20 +233,22 @@ def _station_wave(xs, p, m, s, line, decay, wave):
                 sh += decay[i, j] * qj
                 shz += decay[i, nr + j] * qj
                 tyy -= decay[i, 2 * nr + j] * qj
+                uyy += decay[i, 2 * nr + j] * pj
             wave[i, 2] = dz
             wave[i, 3] = sh
             wave[i, 4] = shz
             wave[i, 5] = tyy
+            wave[i, 6] = uyy * ig
         if curved:
             wave[i, ic] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
-        wave[i, 7] = u
+        wave[i, U_COLUMN] = u
     return inside
 
 
 @njit(cache=True, inline="always")
 def _line_value(line, m, u, c):
     """Column ``c`` of the line table (its slope along xi in ``c + 1``) at the coordinate ``u`` (in
-    intervals from its first point, as ``wave[:, 7]``): cubic Hermite, periodic tables read modulo
+    intervals from its first point, as ``wave[:, U_COLUMN]``): cubic Hermite, periodic tables read modulo
     their period, others at the nearest end beyond it. Column 1 is S."""
     npt = line.shape[0]
     wrap = m[M_WRAP]
@@ -249,6 +259,18 @@ def _line_value(line, m, u, c):
     return _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], u - k, m[M_DXI])
 
 
+@njit(cache=True, inline="always")
+def _line_slope(line, m, u, c):
+    """The slope along xi [1/m] of :func:`_line_value`'s interpolant of column ``c`` at ``u``."""
+    npt = line.shape[0]
+    wrap = m[M_WRAP]
+    if wrap > 0.0:
+        u -= wrap * math.floor(u / wrap)
+    u = min(max(u, 0.0), npt - 1.0)
+    k = min(int(u), npt - 2)
+    return _hermite_slope(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], u - k, m[M_DXI])
+
+
 @njit(cache=True)
 def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, wave, work, out):
     """Add to ``out`` (6,) the horizontal FK force of the pitched sections' tilt and its moment
@@ -257,7 +279,8 @@ def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, 
 
     The volume-based force on a section is rho g dV times the wave slope (paper 000 eq 9, decay
     off: grad p = rho g grad eta; with the pressure decay the area-averaged slope S_h, both here and
-    at the centroid), taken at the station. A pitched section is a tilted slab: its
+    at the centroid, plus the change of S_h over the lift Z / F of the decaying gradient's
+    resultant above the centroid, from dS_hz/dxi), taken at the station. A pitched section is a tilted slab: its
     point (y, z) lies sin(theta) (sin(phi) y + cos(phi) (z - z_w)) along the ship from the station
     (read at the waterline's height z_w, ``_station_wave``). To second order the force is rho g dV
     times the slope S_c at the section's centroid, read from the line table ``line`` where the
@@ -288,13 +311,19 @@ def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, 
         # the centroid's distance along xi from the station, then dV (S_c - S)
         d = cb * st * (sp * work[i, 3] + cp * (work[i, 4] - zw * A)) / A
         if nr > 0:
-            # the pressure decay: the area-averaged slope S_h = sum_j WF_ij Q_j there and here
+            # the pressure decay: the area-averaged slope S_h = sum_j WF_ij Q_j there and here, and
+            # since the decaying gradient's resultant lies Z / F above the centroid, where the slab is
+            # cos(beta) sin(theta) cos(phi) Z / F further along xi, its change there: dS_hz/dxi
+            # (S_hz = sum_j WZ_ij Q_j) times that factor
             sc = 0.0
+            lift = cb * st * cp
             for j in range(nr):
-                sc += decay[i, j] * _line_value(line, m, wave[i, 7] + d / h, 5 + 4 * j)
+                c = 5 + 4 * j
+                sc += decay[i, j] * _line_value(line, m, wave[i, U_COLUMN] + d / h, c)
+                sc += lift * decay[i, nr + j] * _line_slope(line, m, wave[i, U_COLUMN], c)
             e = (sc - wave[i, 3]) * A * dx[i]
         else:
-            e = (_line_value(line, m, wave[i, 7] + d / h, 1) - wave[i, 1]) * A * dx[i]
+            e = (_line_value(line, m, wave[i, U_COLUMN] + d / h, 1) - wave[i, 1]) * A * dx[i]
         vs += e
         px += (xs[i] - xg) * e
         py += work[i, 3] / A * e
@@ -530,12 +559,11 @@ def _memory(p, m, s, r, ds, u):
 
 @njit(cache=True, inline="always")
 def _wave_columns(m, decay):
-    """Columns of ``_kernels``'s station-wave layout: 2, 4 with the curved waterline, 6 with the
-    pressure decay, 7 with both."""
-    n = 6 if decay.shape[1] > 0 else 2
-    if m[M_CURVED] != 0.0:
-        n += 1 if n == 6 else 2
-    return n
+    """Columns of ``_kernels``'s station-wave layout: 2, 4 with the curved waterline,
+    ``DECAY_COLUMNS`` (7) with the pressure decay, one more with both."""
+    if decay.shape[1] > 0:
+        return DECAY_COLUMNS + (1 if m[M_CURVED] != 0.0 else 0)
+    return 4 if m[M_CURVED] != 0.0 else 2
 
 
 @njit(cache=True)
@@ -559,7 +587,7 @@ def _wave_loads(xs, dx, ys, zs, npts, tab, lim, p, m, line, decay, s, f, wave, w
 @njit(cache=True)
 def _rhs6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, line, decay, s, delta, ds, f, wave, work, mq, r,
           modes):
-    """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 3 + 2 r) at this time and
+    """State derivative of the 6-DOF state for the wave line ``line`` (npoints, 3 + 4 r) at this time and
     the rudder angle ``delta``; the FK + HS loads see the wave heading relative to the ship,
     beta - psi; ``modes`` the discrete modes (``_modes``; the rudder rate is not written here). Returns
     False if a station left the wave table."""
@@ -775,8 +803,8 @@ def _hermite_state(c, h, sa, ka, sb, kb, out):
 @njit(cache=True, nogil=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay, dt, nsteps, s0, phi_cap, out):
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints,
-    3 + 2 r) the wave line table (eta, S, dS/dxi[, the pressure-decay term's pairs]) on the half-step grid
-    and ``decay`` (nst, r) its station weights (``_station_wave``). The rudder angle is a state of the
+    3 + 4 r) the wave line table (eta, S, dS/dxi[, the pressure-decay terms' groups of four]) on the
+    half-step grid and ``decay`` (nst, 3 r) its station weights (``_station_wave``). The rudder angle is a state of the
     RK4; the zig-zag helm switches at the steps. ``out`` (nsteps + 1, state size) receives the
     states; ``m[M_XI_TIME]`` is set stage by stage (``m`` is the caller's working copy). Returns
     (index of the last step done, status: OK, CAPSIZED (|roll| > phi_cap) or LEFT_TABLE).
@@ -803,7 +831,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
     r = np.empty(6)
     nst = xs.shape[0]
     work = np.empty((nst, 5))
-    wave = np.empty((nst, 8))
+    wave = np.empty((nst, WAVE_BUFFER))
     sub = np.empty_like(ltab[0])
     nf = foils.shape[0]
     modes = np.empty(nf + 2, np.int64)

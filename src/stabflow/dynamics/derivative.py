@@ -167,6 +167,12 @@ def _sample(args, p, q0, rel, waves) -> np.ndarray:
     return out
 
 
+def calm_snapshot(nst: int, decay=None) -> np.ndarray:
+    """A calm-water station wave (1, ``nst``, nq) in the kernel's layout with or without the
+    pressure decay (``decay``, a :class:`~stabflow.dynamics.model.SectionDecay` or None)."""
+    return np.zeros((1, nst, 2 if decay is None else K.DECAY_COLUMNS))
+
+
 def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: float, speed: float, frequencies,
                    *, heave_range: float, roll_range_deg: float = 40.0, pitch_range_deg: float = 3.0,
                    calm_points=(9, 21, 9), wave_points=(5, 9, 5), phases: int = 16, steepness: float = 1 / 40,
@@ -203,8 +209,7 @@ def fit_derivative(sec, tables, p: np.ndarray, s0: np.ndarray, heading_deg: floa
     steps = ranges * derivative_step
     # equilibrium and +-step along each coordinate for the value and the first derivatives
     star = np.vstack([np.zeros(3), np.diag(steps), -np.diag(steps)])
-    nq = 2 if decay is None else 5
-    calm_snap = np.zeros((1, len(sec.x), nq))
+    calm_snap = calm_snapshot(len(sec.x), decay)
 
     def value_and_slopes(S):  # S (..., 7, 3) at the star points -> (..., 3) value, (..., 3, 3) d/dq_k
         return S[..., 0, :], np.moveaxis((S[..., 1:4, :] - S[..., 4:7, :]) / (2 * steps)[:, None], -2, -1)

@@ -431,8 +431,8 @@ def line_waves(model: SixDof, waves) -> LineWaves:
 
 def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: float, reach: float,
               points_per_wavelength: float = 8.0, dtype=np.float64, drift: float = 0.0):
-    """Line table (2 nsteps + 1, npoints, 3 + 2 r) of (eta, S, dS/dxi[, the pressure-decay term's
-    pairs]) from time ``t0`` [s] on the
+    """Line table (2 nsteps + 1, npoints, 3 + 4 r) of (eta, S, dS/dxi[, the pressure-decay terms'
+    groups of four]) from time ``t0`` [s] on the
     half-step grid, its first point and spacing (xi0, dxi) [m], and the number of intervals of a
     periodic table (0: not periodic). ``waves``: (amp, omega, phase) of the components, or a
     :class:`~stabflow.waves.synthesis.LineWaves` of them for the model's heading and speed (a
@@ -613,7 +613,7 @@ def _linear_system(model: SixDof, eps: float = 1e-6):
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_WRAP] = 0.0, 1.0, 1.0
     nst = len(model.sec.x)
     # the foils' lift branches from their angles of attack (-1), as the kernel's modes at a step's start
-    scratch = (np.zeros(6), np.zeros((nst, 8)), np.zeros((nst, 5)), np.zeros((6, 6)),
+    scratch = (np.zeros(6), np.zeros((nst, K6.WAVE_BUFFER)), np.zeros((nst, 5)), np.zeros((6, 6)),
                np.zeros(6),
                np.full(len(model.foils) + 2, -1, np.int64))
 

@@ -276,6 +276,7 @@ class SectionDecay:
         self.slice_offset = np.zeros((nst, slices))  # slice centroid - mid-height [m]
         self.half_height = np.zeros(nst)  # slices' half height [m]
         self.slice_yy = np.zeros((nst, slices))  # slice int y^2 dA [m^4]
+        self.slice_yy_tilt = np.zeros((nst, slices))  # upper half's int y^2 dA - lower half's [m^4]
         for i in range(nst):
             n = sec.n[i]
             c = st * sec.x[i] - h0  # calm waterline b z = c in the section's plane (a = 0, b = cos th0)
@@ -283,15 +284,15 @@ class SectionDecay:
             lo = float(np.min(sec.z[i, :n]))
             if lo >= zw:
                 continue
-            levels = np.linspace(lo, zw, slices + 1)
-            a = np.empty(slices + 1)
-            m = np.empty(slices + 1)
-            yy = np.empty(slices + 1)
-            for j, z in enumerate(levels):
-                r = _section_moments(sec.y[i], sec.z[i], n, 0.0, 1.0, z)
-                a[j], m[j], yy[j] = r[0], r[2], r[3]
+            # slice bounds and mid-heights (int y^2 dA on both halves of each slice)
+            fine = np.linspace(lo, zw, 2 * slices + 1)
+            r = np.array([_section_moments(sec.y[i], sec.z[i], n, 0.0, 1.0, z) for z in fine])
+            levels = fine[::2]
+            a, m = r[::2, 0], r[::2, 2]
             dA = np.diff(a)
-            self.slice_yy[i] = np.diff(yy)
+            yy = np.diff(r[:, 3])
+            self.slice_yy[i] = yy[0::2] + yy[1::2]
+            self.slice_yy_tilt[i] = yy[1::2] - yy[0::2]
             zm = 0.5 * (levels[1:] + levels[:-1])
             with np.errstate(invalid="ignore", divide="ignore"):
                 zc = np.where(dA > 0, np.diff(m) / np.where(dA > 0, dA, 1.0), zm)
@@ -311,9 +312,11 @@ class SectionDecay:
         y^2 e^(k z) [m^2] (F = 1, Z = Y = 0 at a dry station). Z / F is the height of the horizontal
         pressure gradient's resultant above the centroid (it acts higher, where the pressure has
         decayed less); Y gives the roll moment of the vertical pressure gradient's variation across
-        the beam (``_kernels._fkhs``). Y takes each slice's int y^2 dA at its mid-height with the
-        slice's mean of e^(k z) (relative error about (k h)^2 / 6 times the slice's change of
-        width, h the half height: 1e-4 at k h = 0.03)."""
+        the beam (``_kernels._fkhs``). Y takes each slice's int y^2 dA as a density linear in z
+        with its two halves' integrals I_1 (lower) and I_2 (upper) exact: e^(k z_m) [(I_1 + I_2) s1
+        + 2 (I_2 - I_1) s2] (the density is (2 / 3) y_w^3, cubic in z for a width linear in z: the
+        error is second order in k h, the slice's half height h; the slice's total at its mid-height
+        alone was first order, 1.3e-2 on the DTC at k = 2 /m)."""
         k = np.atleast_1d(np.asarray(k, float))
         nst = self.slice_area.shape[0]
         F = np.ones((nst, len(k)))
@@ -340,7 +343,11 @@ class SectionDecay:
         first = np.sum(e * (zm * (s1 + c * s2) + h * (s2 + c * d2)), axis=1) / area
         zc = np.sum(self.slice_area[wet] * (self.slice_depth[wet] + self.slice_offset[wet]), axis=1) / self.total[wet]
         Z[wet] = first - zc[:, None] * F[wet]
-        Y[wet] = np.sum(np.exp(zm * k[None, None, :]) * self.slice_yy[wet][:, :, None] * s1, axis=1) / area
+        # a density linear across the slice: int u e^(k u) du over (-h, h) = 2 h^2 s2, its slope
+        # (I_2 - I_1) / h^2
+        Y[wet] = np.sum(np.exp(zm * k[None, None, :]) * (self.slice_yy[wet][:, :, None] * s1
+                                                         + 2.0 * self.slice_yy_tilt[wet][:, :, None] * s2),
+                        axis=1) / area
         return F, Z, Y
 
 

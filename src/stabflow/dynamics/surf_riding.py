@@ -260,7 +260,7 @@ def following_wave_loads(model: SixDof, vertices, faces, wavelength: float, heig
     pm = PressureModel(vertices, faces, rho, xg, zg, waves, 0.0, speed, decay=m.decay is not None)
     args = kernel_args(m.sec, m.tables)
     nst = len(m.sec.x)
-    wave, work, f = np.empty((nst, 8)), np.empty((nst, 5)), np.empty(6)
+    wave, work, f = np.empty((nst, K6.WAVE_BUFFER)), np.empty((nst, 5)), np.empty(6)
     loads = np.empty((2, len(pick), 3))
     # the sampled steps' wave (one periodic table, its rows on the half-step grid from the first)
     lw = line_waves(m, waves)

@@ -15,7 +15,7 @@ def fit_figure(model, dm, path):
     from stabflow.dynamics.tables import kernel_args
 
     args = kernel_args(model.sec, model.tables)
-    calm = np.zeros((1, len(model.sec.x), 2 if model.decay is None else 5))
+    calm = D.calm_snapshot(len(model.sec.x), model.decay)
     rr = np.radians(float(dm.dataset.attrs["roll_range_deg"]))
     hr = float(dm.dataset.attrs["heave_range"])
     phi = np.linspace(-1.5 * rr, 1.5 * rr, 61)

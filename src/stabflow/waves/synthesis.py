@@ -21,6 +21,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import threading
+import warnings
 
 import numpy as np
 
@@ -127,12 +128,12 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
     ``decay`` (:class:`stabflow.dynamics.model.SectionDecay`: the sections' area averages F_i(k),
     Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z)) adds the pressure's decay with
-    depth as four columns (nq = 6, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
+    depth as five columns (nq = 7, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
     -g sum_n a_n k_n F_i(k_n) cos psi_n, the area-averaged slope S_h = -sum a k F sin psi, its
-    moment about the centroid S_hz = -sum a k Z sin psi [m] and T_yy = sum a k^2 Y sin psi [m];
-    None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
+    moment about the centroid S_hz = -sum a k Z sin psi [m], T_yy = sum a k^2 Y sin psi [m] and
+    U_yy = -sum a k^2 Y cos psi [m]; None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
     propagation eta_xixi [1/m] for the curved waterline across each section
-    (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 7 with
+    (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 8 with
     ``decay``). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
     the table is one matrix product of the time factors (nt, 2 nc) with the station coefficients
     (2 nc, nst nq), in ``dtype`` (float32 halves the cost of long ensembles).
@@ -151,12 +152,13 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     cols = [(amp * cP, amp * sP), (-ak * sP, ak * cP)]  # eta = sum a cos psi, S = -sum a k sin psi
     if decay is not None:
         # dphi_zt = -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
-        # T_yy = sum a k^2 Y sin psi
+        # T_yy = sum a k^2 Y sin psi, U_yy = -sum a k^2 Y cos psi
         F, Z, Y = decay.moments(k)
         cols.append((-G * ak * F * cP, -G * ak * F * sP))
         cols.append((-ak * F * sP, ak * F * cP))
         cols.append((-ak * Z * sP, ak * Z * cP))
         cols.append((ak * k * Y * sP, -ak * k * Y * cP))
+        cols.append((-ak * k * Y * cP, -ak * k * Y * sP))  # U_yy = -sum a k^2 Y cos psi
     elif curvature:
         cols.append((np.zeros_like(cP), np.zeros_like(sP)))
     if curvature:
@@ -173,17 +175,19 @@ DECAY_RANK_MAX = 6
 
 
 def decay_factors(amp, k, decay):
-    """The stations' pressure-decay terms (``dynamics._kernels``'s layouts: dphi_zt, S_h, S_hz, T_yy)
+    """The stations' pressure-decay terms (``dynamics._kernels``'s layouts: dphi_zt, S_h, S_hz, T_yy, U_yy)
     as sums of r products of a station weight and a line quantity.
 
     With F_i(k), Z_i(k), Y_i(k) of :class:`stabflow.dynamics.model.SectionDecay` ``decay``, the
     terms -g sum_n a_n k_n F_i(k_n) cos psi_n, -sum_n a_n k_n F_i(k_n) sin psi_n,
-    -sum_n a_n k_n Z_i(k_n) sin psi_n and sum_n a_n k_n^2 Y_i(k_n) sin psi_n need
+    -sum_n a_n k_n Z_i(k_n) sin psi_n, sum_n a_n k_n^2 Y_i(k_n) sin psi_n and
+    -sum_n a_n k_n^2 Y_i(k_n) cos psi_n need
     a_n k_n (F_i, Z_i, k_n Y_i)(k_n) ~ sum_j (WF_ij, WZ_ij, WY_ij) C_nj: one truncated singular value
     decomposition of the (component, 3 x station) matrix of the three, each station's column scaled
     to unit norm. Its r is the least for which every column's residual norm over the components (the
     standard deviation of the term's error over random phases) is within ``DECAY_RANK_TOLERANCE`` of
-    the column's norm, at most ``DECAY_RANK_MAX``. Returns the line factors C (nc, r) and the station
+    the column's norm, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
+    is not enough). Returns the line factors C (nc, r) and the station
     weights (nst, 3 r), WF, WZ then WY, each factor's sign chosen so that its weights WF sum to
     >= 0 (one regular wave's weights then do not depend on its amplitude's sign)."""
     amp = np.asarray(amp, float)
@@ -203,6 +207,11 @@ def decay_factors(amp, k, decay):
             kept += (S[r - 1] * Vt[r - 1]) ** 2
             if np.all(1.0 - kept[live] <= DECAY_RANK_TOLERANCE**2):
                 break
+        worst = float(np.sqrt(max(np.max(1.0 - kept[live]), 0.0)))
+        if worst > DECAY_RANK_TOLERANCE:
+            warnings.warn(f"pressure-decay factorisation: rank {r} (DECAY_RANK_MAX) leaves a {100 * worst:.2g} % "
+                          f"error at its worst station, above DECAY_RANK_TOLERANCE {100 * DECAY_RANK_TOLERANCE:g} %",
+                          RuntimeWarning, stacklevel=2)
     C = U[:, :r] * S[:r]
     W = Vt[:r].T * norm[:, None]  # (3 nst, r)
     flip = np.where(W[:nst].sum(axis=0) < 0, -1.0, 1.0)
@@ -226,8 +235,9 @@ class LineWaves:
         The ship's sections' pressure decay (:class:`stabflow.dynamics.model.SectionDecay`): the
         tables then carry r = ``decay_coef.shape[1]`` groups of four columns (:func:`decay_factors`),
         P_j = -g sum_n C_nj cos psi_n, its slope dP_j/dxi, Q_j = -sum_n C_nj sin psi_n and dQ_j/dxi;
-        at station i, dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j and
-        T_yy = -sum_j WY_ij Q_j with ``decay_weights`` (nst, 3 r) = (WF, WZ, WY).
+        at station i, dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j,
+        T_yy = -sum_j WY_ij Q_j and U_yy = sum_j WY_ij P_j / g with ``decay_weights`` (nst, 3 r) =
+        (WF, WZ, WY).
     """
 
     def __init__(self, amp, omega, phase, heading_deg: float, speed: float, decay=None):
