@@ -208,7 +208,7 @@ def decay_factors(amp, k, decay):
             if np.all(1.0 - kept[live] <= DECAY_RANK_TOLERANCE**2):
                 break
         worst = float(np.sqrt(max(np.max(1.0 - kept[live]), 0.0)))
-        if worst > DECAY_RANK_TOLERANCE:
+        if worst > DECAY_RANK_TOLERANCE and r < len(S):
             warnings.warn(f"pressure-decay factorisation: rank {r} (DECAY_RANK_MAX) leaves a {100 * worst:.2g} % "
                           f"error at its worst station, above DECAY_RANK_TOLERANCE {100 * DECAY_RANK_TOLERANCE:g} %",
                           RuntimeWarning, stacklevel=2)
