@@ -27,9 +27,9 @@ import math
 import numpy as np
 from numba import njit
 
-from stabflow.dynamics._kernels import (DECAY_COLUMNS, N_STATE, P_ADDED_MASS, P_COS_BETA, P_G, P_RHO, P_SIN_BETA, P_XG, P_ZG, S_PITCH,
-                                        S_RATE, S_ROLL, S_X, S_Y, S_YAW, S_Z, _fkhs, _generalized_system,
-                                        _origin_height, _rotate, _solve_free, _update_amplitude)
+from stabflow.dynamics._kernels import (DECAY_COLUMNS, N_STATE, P_ADDED_MASS, P_COS_BETA, P_G, P_RHO, P_SIN_BETA,
+                                        P_XG, P_ZG, S_PITCH, S_RATE, S_ROLL, S_X, S_Y, S_YAW, S_Z, _fkhs,
+                                        _generalized_system, _origin_height, _rotate, _solve_free, _update_amplitude)
 
 #: columns of the stations' wave buffer (``_station_wave``): ``_kernels``'s layouts (at most
 #: DECAY_COLUMNS + 1) and the stations' coordinate in the line table
@@ -136,8 +136,8 @@ def _hermite_slope(y0, d0, y1, d1, t, h):
 
 @njit(cache=True)
 def _station_wave(xs, p, m, s, line, decay, wave):
-    """Fill ``wave`` (nst, ``WAVE_BUFFER``) with the stations' wave in ``_kernels``'s layout (``_wave_columns``) and u (eta_xixi = dS/dxi, the slope of S's Hermite
-    interpolant: 0.4 % at 8 points per wavelength where a linear one of the tabulated dS/dxi is 7.6 %
+    """Fill ``wave`` (nst, ``WAVE_BUFFER``) with the stations' wave in ``_kernels``'s layout
+    (``_wave_columns``) and u (eta_xixi = dS/dxi, the slope of S's Hermite interpolant: 0.4 % at 8 points per wavelength where a linear one of the tabulated dS/dxi is 7.6 %
     low), at the stations' instantaneous positions from the line
     table ``line`` (npoints, 3 + 4 r) at one time, whose points then lie at xi = m[M_XI0] + m[M_XI_RATE]
     m[M_XI_TIME] + k m[M_DXI] (a table on a grid moving with the ship's drift). Returns False if a station lies outside the table (its
@@ -246,29 +246,25 @@ def _station_wave(xs, p, m, s, line, decay, wave):
 
 
 @njit(cache=True, inline="always")
-def _line_value(line, m, u, c):
-    """Column ``c`` of the line table (its slope along xi in ``c + 1``) at the coordinate ``u`` (in
-    intervals from its first point, as ``wave[:, U_COLUMN]``): cubic Hermite, periodic tables read modulo
-    their period, others at the nearest end beyond it. Column 1 is S."""
+def _line_cell(line, m, u):
+    """The interval k and fraction t in it of the coordinate ``u`` of the line table ``line`` (in
+    intervals from its first point, as ``wave[:, U_COLUMN]``): periodic tables read modulo their
+    period, others at the nearest end beyond it."""
     npt = line.shape[0]
     wrap = m[M_WRAP]
     if wrap > 0.0:
         u -= wrap * math.floor(u / wrap)
     u = min(max(u, 0.0), npt - 1.0)
     k = min(int(u), npt - 2)
-    return _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], u - k, m[M_DXI])
+    return k, u - k
 
 
 @njit(cache=True, inline="always")
-def _line_slope(line, m, u, c):
-    """The slope along xi [1/m] of :func:`_line_value`'s interpolant of column ``c`` at ``u``."""
-    npt = line.shape[0]
-    wrap = m[M_WRAP]
-    if wrap > 0.0:
-        u -= wrap * math.floor(u / wrap)
-    u = min(max(u, 0.0), npt - 1.0)
-    k = min(int(u), npt - 2)
-    return _hermite_slope(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], u - k, m[M_DXI])
+def _line_value(line, m, u, c):
+    """Column ``c`` of the line table (its slope along xi in ``c + 1``) at the coordinate ``u``
+    (:func:`_line_cell`): cubic Hermite. Column 1 is S."""
+    k, t = _line_cell(line, m, u)
+    return _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], t, m[M_DXI])
 
 
 @njit(cache=True)
@@ -317,10 +313,13 @@ def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, 
             # (S_hz = sum_j WZ_ij Q_j) times that factor
             sc = 0.0
             lift = cb * st * cp
+            kc, tc = _line_cell(line, m, wave[i, U_COLUMN] + d / h)  # the centroid's
+            ks, ts = _line_cell(line, m, wave[i, U_COLUMN])  # the station's
             for j in range(nr):
                 c = 5 + 4 * j
-                sc += decay[i, j] * _line_value(line, m, wave[i, U_COLUMN] + d / h, c)
-                sc += lift * decay[i, nr + j] * _line_slope(line, m, wave[i, U_COLUMN], c)
+                sc += decay[i, j] * _hermite(line[kc, c], line[kc, c + 1], line[kc + 1, c], line[kc + 1, c + 1], tc, h)
+                sc += lift * decay[i, nr + j] * _hermite_slope(line[ks, c], line[ks, c + 1], line[ks + 1, c],
+                                                               line[ks + 1, c + 1], ts, h)
             e = (sc - wave[i, 3]) * A * dx[i]
         else:
             e = (_line_value(line, m, wave[i, U_COLUMN] + d / h, 1) - wave[i, 1]) * A * dx[i]
