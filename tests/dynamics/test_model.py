@@ -77,10 +77,11 @@ def test_wave_table_regular():
 def test_wave_table_pressure_decay_columns(barge):
     """With the sections' pressure decay (the barge's box sections, draft 6 m) the table carries
     dphi_zt = -g a k F cos psi, S_h = -a k F sin psi, S_hz = -a k Z sin psi, T_yy = a k^2 Y sin psi and
-    U_yy = -a k^2 Y cos psi (columns 2-6), the heeled section's H_1 = a k (1 - F) cos psi,
-    H_z = a k Z cos psi, H_k = a k^2 sin psi, H_kf = a k^2 F sin psi and H_ky = a k^2 (k Y - Z) sin psi
-    (7-11; 12 with the curved waterline's eta_xixi last) with the box's closed forms
-    F = (1 - e^(-k T)) / (k T) and Z = (1 / T) int_-T^0 (z + T / 2) e^(k z) dz."""
+    U_yy = -a k^2 Y cos psi (columns 2-6), the heeled section's a k w cos psi for w = 1 - F,
+    A (1 - F), A (z_c (1 - F) + k Y - Z) and a k w sin psi for w = k, A k, A (z_c k (1 - F) + k^2 Y - k Z)
+    (7-12, A = 120 m^2 and z_c = 3 m the box section's area and centroid height; 13 with the
+    curved waterline's eta_xixi last) with the box's closed forms F = (1 - e^(-k T)) / (k T) and
+    Z = (1 / T) int_-T^0 (z + T / 2) e^(k z) dz."""
     ship, sec, st = barge[:3]
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
     dec = section_decay(sec, h0, th0)
@@ -90,14 +91,17 @@ def test_wave_table_pressure_decay_columns(barge):
     Z = (-1 / k**2 + np.exp(-k * T) * (T / k + 1 / k**2)) / T + 0.5 * T * F
     for curved in (False, True):
         tab = station_wave_table(amp, w, ph, sec.x, 0.0, 0.0, np.array([0.0]), dec, curvature=curved)
-        assert tab.shape[2] == (13 if curved else 12)
+        assert tab.shape[2] == (14 if curved else 13)
         c, s_ = np.cos(k * x), np.sin(k * x)
         Y = dec.moments([k])[2][3, 0]
-        np.testing.assert_allclose(tab[0, 3, 2:12], [-G * k * c * F, -k * s_ * F, -k * s_ * Z, k * k * s_ * Y,
-                                                     -k * k * c * Y, k * (1 - F) * c, k * Z * c, k * k * s_,
-                                                     k * k * F * s_, k * k * (k * Y - Z) * s_], rtol=1e-9)
+        A, zc = 120.0, 3.0
+        np.testing.assert_allclose(tab[0, 3, 2:13], [-G * k * c * F, -k * s_ * F, -k * s_ * Z, k * k * s_ * Y,
+                                                     -k * k * c * Y, k * (1 - F) * c, A * k * (1 - F) * c,
+                                                     A * k * (zc * (1 - F) + k * Y - Z) * c, k * k * s_,
+                                                     A * k * k * s_, A * k * (zc * k * (1 - F) + k * k * Y - k * Z) * s_],
+                                   rtol=1e-9)
         if curved:
-            assert tab[0, 3, 12] == pytest.approx(-k * k * c)
+            assert tab[0, 3, 13] == pytest.approx(-k * k * c)
 
 
 def _polygon_yy(sec, i, zw, th0, k):

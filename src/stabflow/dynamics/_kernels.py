@@ -8,15 +8,15 @@ the waterline's curvature across the sections, in one of four layouts (``_wave_l
 
 * (eta, S): paper 000's model;
 * (eta, S, 0, eta_xixi): the curved waterline (``_curved_sections``);
-* (eta, S, dphi_zt, S_h, S_hz, T_yy, U_yy, H_1, H_z, H_k, H_kf, H_ky): the pressure decaying with
+* (eta, S, dphi_zt, S_h, S_hz, T_yy, U_yy, H_1, ..., H_6): the pressure decaying with
   depth (``dphi_dzdt``): the sections' area average of d2(phi0)/dz dt [m/s^2] in the vertical
   force, the area-averaged slope of the dynamic pressure head S_h [-] in the horizontal force, its
   first moment about the section's centroid S_hz [m] in the horizontal force's lever, T_yy [m]
   for the roll moment of the vertical pressure gradient's variation across the beam and U_yy [m]
   for the yaw moment of the horizontal gradient's, at the upright pose
-  (``dynamics.model.SectionDecay``); then the heeled section's terms (``_fkhs``):
-  H_1 = sum a k (1 - F) cos psi [-], H_z = sum a k Z cos psi [m], H_k = sum a k^2 sin psi [1/m],
-  H_kf = sum a k^2 F sin psi [1/m] and H_ky = sum a k^2 (k Y - Z) sin psi [-];
+  (``dynamics.model.SectionDecay``); then the heeled section's six sums sum a k w cos psi (H_1,
+  H_2, H_3) and sum a k w sin psi (H_4, H_5, H_6) with the weights w of
+  ``SectionDecay.heel_weights`` (``_fkhs``);
 * the same with eta_xixi last: both.
 
 Sections are clipped exactly (``_section``) or, when tables are given (``tab.shape[0] > 0``), read
@@ -115,7 +115,7 @@ def _section_tab(tab, lim, i, psi, d):
 
 
 #: columns of the station wave with the pressure decay (module docstring), planar waterline
-DECAY_COLUMNS = 12
+DECAY_COLUMNS = 13
 
 
 @njit(cache=True, inline="always")
@@ -156,16 +156,18 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
     neither this term nor T_yy carries; the y^2 half alone, put in through the rotated lever, changed
     the DSA's barge rate by -36 % and the trawler's by +69 %, more than the term it stood for.
     Heeled, the decayed pressure's first moment across the beam, I_y = int y e^(k z) dA (earth y
-    from G, z below the calm waterline), is not F int y dA: the rotated upright section gives
-    sin(phi) A (k Y - Z + zeta_c (1 - F)) (zeta_c its centroid's height above G) and the wedges
-    at the waterline, where e^(k z) = 1, their whole moment cos(phi) int y_b dA (body y). To first
-    order in the heel this adds the roll moment -rho g dV [cos(phi) y_b H_1 + sin(phi) (-U_yy - H_z)]
-    (-a k cos psi I_y), and the vertical force rho g sin(beta) dV [cos(phi) y_b H_k - sin(phi) z_b H_kf
-    + sin(phi) H_ky] (a k k_y sin psi I_y with y from the body origin's vertical, where the
-    station's wave is: z_b the centroid's height above the origin) with its pitch moment. Against
-    pressure integration with decay on the heeled barge (10 degree, lambda 40-120 m, 45-135 degree)
-    the heel's part of the roll moment's first harmonic was 15-116 % off without them and is
-    0.3-1.8 % off with them; the vertical force's 3-30 % of its upright first harmonic, now 0.3 %.
+    from G, z below the calm waterline), is not F int y dA: to first order in the heel the rotated
+    calm section gives sin(phi) A (k Y - Z - zeta_c F) (A its area, zeta_c its centroid's height
+    above G) and the wedges at the waterline, where e^(k z) = 1, their whole moment
+    y_1 + sin(phi) A zeta_c (y_1 the section's earth first moment about G). This adds the roll
+    moment -rho g dV sum a k cos psi (I_y - F y_1) = -rho g [y_1 H_1 + sin(phi) (H_3 - z_G H_2)] dx
+    and the vertical force rho g sin(beta) sum a k^2 sin psi (I_y + y_o A F), y_o = -z_G sin(phi)
+    the lateral distance from the body origin's vertical, where the station's wave is, to G:
+    rho g sin(beta) [y_1 H_4 + sin(phi) (H_6 - z_G H_5)] dx, with its pitch moment (H_1 ... H_6 the
+    columns 7-12 of the layout, ``SectionDecay.heel_weights``). Against pressure integration with
+    decay on the barge held heeled by +-10 degree (lambda 40-120 m, 45-135 degree) the heel's part
+    of the roll moment's first harmonic was 15-116 % off without them; the vertical force's 3-30 %
+    and the pitch moment's up to 24 % of their upright first harmonics.
     Without the decay the dynamic pressure does not vary with depth and none of these arises; with
     the decay in the horizontal force alone, the roll excitation in beam seas would be far off
     (DTMB 5415, lambda 60 m: +98 % against pressure integration with decay). Returns the volume [m^3].
@@ -240,8 +242,9 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
             pz += dV * wave[i, 4]
             vu += dV * wave[i, 6]
             # the heeled section's decayed moment across the beam (docstring)
-            hx -= cp * by * wave[i, 7] - sp * dV * (wave[i, 6] + wave[i, 8])
-            dfz = sb * (cp * by * wave[i, 9] - sp * work[i, 4] * dx[i] * wave[i, 10] + sp * dV * wave[i, 11])
+            y1 = cp * by - sp * bz
+            hx -= y1 * wave[i, 7] + sp * dx[i] * (wave[i, 9] - zg * wave[i, 8])
+            dfz = sb * (y1 * wave[i, 10] + sp * dx[i] * (wave[i, 12] - zg * wave[i, 11]))
             hz += dfz
             hm -= (xs[i] - xg) * dfz
         qx += bx * wz

@@ -165,10 +165,10 @@ def _station_wave(xs, p, m, s, line, decay, wave):
     rotations left out), for the constrained-case comparison.
 
     ``wave`` (nst, ``WAVE_BUFFER``) receives (eta, S) in its first columns, then with the pressure
-    decay (``decay`` (nst, ``DECAY_BLOCKS`` r), r > 0: the station weights (WF, WZ, WY, W1, Wk,
-    WkF, WkZ, WkY) of ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j,
+    decay (``decay`` (nst, ``DECAY_BLOCKS`` r), r > 0: the station weights (WF, WZ, WY, W_1 ...
+    W_6) of ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j,
     S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j, T_yy = -sum_j WY_ij Q_j and
-    U_yy = sum_j WY_ij P_j / g in columns 2-6, the heeled section's H_1 ... H_ky in 7-11
+    U_yy = sum_j WY_ij P_j / g in columns 2-6, the heeled section's H_1 ... H_6 in 7-12
     (P_j, Q_j in the table's columns 3 + 4 j and 5 + 4 j, their slopes after each, Hermite as eta),
     and with the curved waterline (``M_CURVED``) eta_xixi in column 3, or 7 with the decay: the
     first ``_wave_columns`` columns are ``_kernels._fkhs``'s layout. Column ``U_COLUMN`` receives
@@ -227,13 +227,13 @@ def _station_wave(xs, p, m, s, line, decay, wave):
             shz = 0.0
             tyy = 0.0
             uyy = 0.0
-            # the heeled section's H_1 = (dphi_zt - sum_j W1_ij P_j) / g, H_z = -sum_j WZ_ij P_j / g,
-            # H_k, H_kf = -sum_j (Wk_ij, WkF_ij) Q_j, H_ky = -sum_j (WkY_ij - WkZ_ij) Q_j
-            w1 = 0.0
-            hz_ = 0.0
-            hk = 0.0
-            hkf = 0.0
-            hky = 0.0
+            # the heeled section's H_1, H_2, H_3 = -sum_j W_ij P_j / g and H_4, H_5, H_6 = -sum_j W_ij Q_j
+            h1 = 0.0
+            h2 = 0.0
+            h3 = 0.0
+            h4 = 0.0
+            h5 = 0.0
+            h6 = 0.0
             for j in range(nr):
                 c = 3 + 4 * j
                 pj = _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], t, h)
@@ -243,21 +243,23 @@ def _station_wave(xs, p, m, s, line, decay, wave):
                 shz += decay[i, nr + j] * qj
                 tyy -= decay[i, 2 * nr + j] * qj
                 uyy += decay[i, 2 * nr + j] * pj
-                w1 += decay[i, 3 * nr + j] * pj
-                hz_ -= decay[i, nr + j] * pj
-                hk -= decay[i, 4 * nr + j] * qj
-                hkf -= decay[i, 5 * nr + j] * qj
-                hky -= (decay[i, 7 * nr + j] - decay[i, 6 * nr + j]) * qj
+                h1 -= decay[i, 3 * nr + j] * pj
+                h2 -= decay[i, 4 * nr + j] * pj
+                h3 -= decay[i, 5 * nr + j] * pj
+                h4 -= decay[i, 6 * nr + j] * qj
+                h5 -= decay[i, 7 * nr + j] * qj
+                h6 -= decay[i, 8 * nr + j] * qj
             wave[i, 2] = dz
             wave[i, 3] = sh
             wave[i, 4] = shz
             wave[i, 5] = tyy
             wave[i, 6] = uyy * ig
-            wave[i, 7] = (dz - w1) * ig
-            wave[i, 8] = hz_ * ig
-            wave[i, 9] = hk
-            wave[i, 10] = hkf
-            wave[i, 11] = hky
+            wave[i, 7] = h1 * ig
+            wave[i, 8] = h2 * ig
+            wave[i, 9] = h3 * ig
+            wave[i, 10] = h4
+            wave[i, 11] = h5
+            wave[i, 12] = h6
         if curved:
             wave[i, ic] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
         wave[i, U_COLUMN] = u
@@ -578,7 +580,7 @@ def _memory(p, m, s, r, ds, u):
 @njit(cache=True, inline="always")
 def _wave_columns(m, decay):
     """Columns of ``_kernels``'s station-wave layout: 2, 4 with the curved waterline,
-    ``DECAY_COLUMNS`` (12) with the pressure decay, one more with both."""
+    ``DECAY_COLUMNS`` (13) with the pressure decay, one more with both."""
     if decay.shape[1] > 0:
         return DECAY_COLUMNS + (1 if m[M_CURVED] != 0.0 else 0)
     return 4 if m[M_CURVED] != 0.0 else 2

@@ -301,6 +301,28 @@ class SectionDecay:
             self.slice_offset[i] = (zc - zm) * ct
             self.half_height[i] = 0.5 * (zw - lo) / slices * ct
         self.total = self.slice_area.sum(axis=1)  # section areas [m^2]
+        # the calm sections' centroid height above the body origin [m] (body axes; 0 when dry)
+        self.centroid_height = np.zeros(nst)
+        for i in range(nst):
+            if self.total[i] > 0:
+                zw = (st * sec.x[i] - h0) / ct
+                depth = np.sum(self.slice_area[i] * (self.slice_depth[i] + self.slice_offset[i])) / self.total[i]
+                self.centroid_height[i] = zw + depth / ct
+
+    def heel_weights(self, k) -> tuple[np.ndarray, ...]:
+        """The weights w_i(k_n) (each (nst, nc)) of the heeled section's six terms
+        ``dynamics._kernels._fkhs`` sums as sum_n a_n k_n w_i(k_n) cos psi_n (the first three) and
+        sin psi_n (the last three): 1 - F, A (1 - F), A (z_c (1 - F) + k Y - Z), then k, A k and
+        A (z_c k (1 - F) + k^2 Y - k Z), with A the calm section's area [m^2] and z_c its centroid's
+        height above the body origin [m] (F, Z, Y of :meth:`moments`)."""
+        k = np.atleast_1d(np.asarray(k, float))
+        F, Z, Y = self.moments(k)
+        A = self.total[:, None]
+        zc = self.centroid_height[:, None]
+        kk = k[None, :]
+        one = np.ones_like(F)
+        return (1.0 - F, A * (1.0 - F), A * (zc * (1.0 - F) + kk * Y - Z),
+                kk * one, A * kk * one, A * (zc * kk * (1.0 - F) + kk**2 * Y - kk * Z))
 
     def __call__(self, k) -> np.ndarray:
         """F_i(k_n) (nst, nc) for wave numbers ``k`` (nc,) [1/m]; 1 at a dry station."""

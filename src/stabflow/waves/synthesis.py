@@ -128,13 +128,13 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
     ``decay`` (:class:`stabflow.dynamics.model.SectionDecay`: the sections' area averages F_i(k),
     Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z)) adds the pressure's decay with
-    depth as ten columns (nq = 12, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
+    depth as eleven columns (nq = 13, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
     -g sum_n a_n k_n F_i(k_n) cos psi_n, the area-averaged slope S_h = -sum a k F sin psi, its
     moment about the centroid S_hz = -sum a k Z sin psi [m], T_yy = sum a k^2 Y sin psi [m] and
-    U_yy = -sum a k^2 Y cos psi [m], then the heeled section's H_1, H_z, H_k, H_kf and H_ky
-    (``dynamics._kernels``), 12 columns; None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
+    U_yy = -sum a k^2 Y cos psi [m], then the heeled section's six terms H_1 ... H_6
+    (``dynamics._kernels``), 13 columns; None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
     propagation eta_xixi [1/m] for the curved waterline across each section
-    (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 13 with
+    (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 14 with
     ``decay``). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
     the table is one matrix product of the time factors (nt, 2 nc) with the station coefficients
     (2 nc, nst nq), in ``dtype`` (float32 halves the cost of long ensembles).
@@ -160,12 +160,12 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
         cols.append((-ak * Z * sP, ak * Z * cP))
         cols.append((ak * k * Y * sP, -ak * k * Y * cP))
         cols.append((-ak * k * Y * cP, -ak * k * Y * sP))  # U_yy = -sum a k^2 Y cos psi
-        # the heeled section's terms: H_1 = sum a k (1 - F) cos psi, H_z = sum a k Z cos psi,
-        # H_k = sum a k^2 sin psi, H_kf = sum a k^2 F sin psi, H_ky = sum a k^2 (k Y - Z) sin psi
-        cols.append((ak * (1.0 - F) * cP, ak * (1.0 - F) * sP))
-        cols.append((ak * Z * cP, ak * Z * sP))
-        for w in (np.ones_like(F), F, k * Y - Z):
-            cols.append((ak * k * w * sP, -ak * k * w * cP))
+        # the heeled section's terms (``SectionDecay.heel_weights``): sum a k w cos psi, then sin psi
+        hw = decay.heel_weights(k)
+        for w in hw[:3]:
+            cols.append((ak * w * cP, ak * w * sP))
+        for w in hw[3:]:
+            cols.append((ak * w * sP, -ak * w * cP))
     elif curvature:
         cols.append((np.zeros_like(cP), np.zeros_like(sP)))
     if curvature:
@@ -179,9 +179,9 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
 DECAY_RANK_TOLERANCE = 0.01
 #: the largest rank (four table columns each)
 DECAY_RANK_MAX = 6
-#: the station weights' blocks of :func:`decay_factors`: a_n k_n times F, Z, k Y (the upright
-#: terms), then 1, k, k F, k Z and k^2 Y (the heeled section's, ``dynamics._kernels._fkhs``)
-DECAY_BLOCKS = 8
+#: the station weights' blocks of :func:`decay_factors`: WF, WZ, WY of a_n k_n times F, Z, k Y
+#: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``)
+DECAY_BLOCKS = 9
 
 
 def decay_factors(amp, k, decay):
@@ -193,14 +193,15 @@ def decay_factors(amp, k, decay):
     -sum_n a_n k_n Z_i(k_n) sin psi_n, sum_n a_n k_n^2 Y_i(k_n) sin psi_n and
     -sum_n a_n k_n^2 Y_i(k_n) cos psi_n need
     a_n k_n (F_i, Z_i, k_n Y_i)(k_n) ~ sum_j (WF_ij, WZ_ij, WY_ij) C_nj, and the heeled section's
-    H_1, H_z, H_k, H_kf, H_ky (``dynamics._kernels``) a_n k_n (1, k_n, k_n F_i, k_n Z_i, k_n^2 Y_i)
-    ~ sum_j (W1_ij, Wk_ij, WkF_ij, WkZ_ij, WkY_ij) C_nj: one truncated singular value
-    decomposition of the (component, ``DECAY_BLOCKS`` x station) matrix of the eight, each
+    six terms, whose weights are sums of station constants times those of a_n k_n (1, k_n,
+    k_n F_i, k_n Z_i, k_n^2 Y_i) ~ sum_j (W1_ij, Wk_ij, WkF_ij, WkZ_ij, WkY_ij) C_nj: one truncated
+    singular value decomposition of the (component, 8 x station) matrix of the eight, each
     station's column scaled to unit norm. Its r is the least for which every column's residual norm over the components (the
     standard deviation of the term's error over random phases) is within ``DECAY_RANK_TOLERANCE`` of
     the column's norm, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
     is not enough). Returns the line factors C (nc, r) and the station
-    weights (nst, ``DECAY_BLOCKS`` r), WF, WZ, WY, W1, Wk, WkF, WkZ then WkY, each factor's sign
+    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY and the six of ``SectionDecay.heel_weights``
+    (W1 - WF, A (W1 - WF), A (z_c (W1 - WF) + WY - WZ), Wk, A Wk, A (z_c (Wk - WkF) + WkY - WkZ)), each factor's sign
     chosen so that its weights WF sum to >= 0 (one regular wave's weights then do not depend on
     its amplitude's sign)."""
     amp = np.asarray(amp, float)
@@ -228,10 +229,14 @@ def decay_factors(amp, k, decay):
                           f"error at its worst station, above DECAY_RANK_TOLERANCE {100 * DECAY_RANK_TOLERANCE:g} %",
                           RuntimeWarning, stacklevel=2)
     C = U[:, :r] * S[:r]
-    W = Vt[:r].T * norm[:, None]  # (DECAY_BLOCKS nst, r)
+    W = Vt[:r].T * norm[:, None]  # (8 nst, r)
     flip = np.where(W[:nst].sum(axis=0) < 0, -1.0, 1.0)
-    return C * flip, np.ascontiguousarray(np.concatenate([W[b * nst:(b + 1) * nst] * flip
-                                                          for b in range(DECAY_BLOCKS)], axis=1))
+    WF, WZ, WY, W1, Wk, WkF, WkZ, WkY = (W[b * nst:(b + 1) * nst] * flip for b in range(8))
+    A = decay.total[:, None]
+    zc = decay.centroid_height[:, None]
+    blocks = (WF, WZ, WY, W1 - WF, A * (W1 - WF), A * (zc * (W1 - WF) + WY - WZ),
+              Wk, A * Wk, A * (zc * (Wk - WkF) + WkY - WkZ))
+    return C * flip, np.ascontiguousarray(np.concatenate(blocks, axis=1))
 
 
 class LineWaves:
