@@ -59,15 +59,10 @@ def test_rao_sweep_long_wave_limits(barge):
     assert float(ds.roll_rao[0]) < 1e-6
 
 
-@pytest.mark.parametrize("wavelength,heading", [(40.0, 45.0), (120.0, 150.0)])
-def test_kernel_loads_with_pressure_decay_against_pressure_integration(barge, wavelength, heading):
-    """All six first-harmonic FK loads of the kernel with the pressure decay (``SectionDecay``: the
-    vertical term, the area-averaged horizontal slope with its lever, the vertical and horizontal
-    gradients' variation across the beam) on the barge held at equilibrium in oblique regular waves,
-    H/lambda 1/500, within 1 % of each load's amplitude from pressure integration with the e^(k z)
-    decay on the box mesh (phase linearised across the beam, the kernel's assumption). Measured
-    0.03-0.65 %; without the horizontal gradient's cross-beam term the yaw moment was 6.5 % and
-    2.5 % off."""
+def _barge_decay_models(barge, wavelength, heading, steepness):
+    """The barge's kernel with the pressure decay and pressure integration with the e^(k z) decay
+    on its box mesh (phase linearised across the beam), one regular wave of ``wavelength`` [m] and
+    ``steepness``: (kernel, pressure, h0, th0, encounter frequency)."""
     from stabflow.dynamics.linear import KernelLoads
     from stabflow.dynamics.model import section_decay
 
@@ -77,13 +72,25 @@ def test_kernel_loads_with_pressure_decay_against_pressure_integration(barge, wa
     m = trimesh.creation.box(extents=[100, 20, 12])
     m.apply_translation([0, 0, 6])
     v, f = trimesh.remesh.subdivide_to_size(m.vertices, m.faces, max_edge=2.0)
-    W = regular(wavelength / 500, wavelength)
-    we = float(W[1][0])
+    W = regular(steepness * wavelength, wavelength)
+    return (KernelLoads(sec, ship.rho, xg, zg, W, heading, 0.0, section_decay(sec, h0, th0)),
+            PressureModel(v, f, ship.rho, xg, zg, W, heading, 0.0, decay=True, waterline="planar"),
+            h0, th0, float(W[1][0]))
+
+
+@pytest.mark.parametrize("wavelength,heading", [(40.0, 45.0), (120.0, 150.0)])
+def test_kernel_loads_with_pressure_decay_against_pressure_integration(barge, wavelength, heading):
+    """All six first-harmonic FK loads of the kernel with the pressure decay (``SectionDecay``: the
+    vertical term, the area-averaged horizontal slope with its lever, the vertical and horizontal
+    gradients' variation across the beam) on the barge held at equilibrium in oblique regular waves,
+    H/lambda 1/500, within 1 % of each load's amplitude from pressure integration with the e^(k z)
+    decay on the box mesh (phase linearised across the beam, the kernel's assumption). Measured
+    0.03-0.65 %; without the horizontal gradient's cross-beam term the yaw moment was 6.5 % and
+    2.5 % off."""
+    kernel, pressure, h0, th0, we = _barge_decay_models(barge, wavelength, heading, 1.0 / 500.0)
     t = np.arange(64) * 2 * np.pi / we / 64
     amp = {}
-    for key, model in (("kernel", KernelLoads(sec, ship.rho, xg, zg, W, heading, 0.0, section_decay(sec, h0, th0))),
-                       ("pressure", PressureModel(v, f, ship.rho, xg, zg, W, heading, 0.0, decay=True,
-                                                  waterline="planar"))):
+    for key, model in (("kernel", kernel), ("pressure", pressure)):
         L = np.array([model.loads(tt, h0, 0.0, th0) for tt in t])
         amp[key] = np.array([a * np.exp(1j * p) for a, p in (first_harmonic(t, L[:, j], we) for j in range(6))])
     err = np.abs(amp["kernel"] - amp["pressure"]) / np.abs(amp["pressure"])
@@ -100,20 +107,8 @@ def test_heeled_kernel_loads_with_pressure_decay_against_pressure_integration(ba
     H_1 ... H_6 50 % and 30 %), the vertical force and (at 60 degree) the pitch moment within
     0.5 % of their upright first harmonics (measured 0.13 and 0.07 / 0.38 %; without: 12 and
     5.5 / 6 %)."""
-    from stabflow.dynamics.linear import KernelLoads
-    from stabflow.dynamics.model import section_decay
-
-    ship, sec, st, co = barge
-    xg, zg = float(st.lcg), float(st.kg)
-    h0, th0, _ = equilibrium(sec, float(st.volume), xg, zg)
-    m = trimesh.creation.box(extents=[100, 20, 12])
-    m.apply_translation([0, 0, 6])
-    v, f = trimesh.remesh.subdivide_to_size(m.vertices, m.faces, max_edge=2.0)
-    W = regular(wavelength / 100, wavelength)
-    we = float(W[1][0])
+    kernel, pressure, h0, th0, we = _barge_decay_models(barge, wavelength, heading, 1.0 / 100.0)
     t = np.arange(32) * 2 * np.pi / we / 32
-    kernel = KernelLoads(sec, ship.rho, xg, zg, W, heading, 0.0, section_decay(sec, h0, th0))
-    pressure = PressureModel(v, f, ship.rho, xg, zg, W, heading, 0.0, decay=True, waterline="planar")
 
     def harmonics(model, phi_deg):
         L = np.array([model.loads(tt, h0, np.radians(phi_deg), th0) for tt in t])
