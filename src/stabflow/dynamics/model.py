@@ -302,12 +302,9 @@ class SectionDecay:
             self.half_height[i] = 0.5 * (zw - lo) / slices * ct
         self.total = self.slice_area.sum(axis=1)  # section areas [m^2]
         # the calm sections' centroid height above the body origin [m] (body axes; 0 when dry)
-        self.centroid_height = np.zeros(nst)
-        for i in range(nst):
-            if self.total[i] > 0:
-                zw = (st * sec.x[i] - h0) / ct
-                depth = np.sum(self.slice_area[i] * (self.slice_depth[i] + self.slice_offset[i])) / self.total[i]
-                self.centroid_height[i] = zw + depth / ct
+        wet = self.total > 0
+        depth = np.sum(self.slice_area * (self.slice_depth + self.slice_offset), axis=1) / np.where(wet, self.total, 1.0)
+        self.centroid_height = np.where(wet, (st * np.asarray(sec.x) - h0 + depth) / ct, 0.0)
 
     def heel_weights(self, k) -> tuple[np.ndarray, ...]:
         """The weights w_i(k_n) (each (nst, nc)) of the heeled section's six terms

@@ -193,24 +193,20 @@ def decay_factors(amp, k, decay):
     -sum_n a_n k_n Z_i(k_n) sin psi_n, sum_n a_n k_n^2 Y_i(k_n) sin psi_n and
     -sum_n a_n k_n^2 Y_i(k_n) cos psi_n need
     a_n k_n (F_i, Z_i, k_n Y_i)(k_n) ~ sum_j (WF_ij, WZ_ij, WY_ij) C_nj, and the heeled section's
-    six terms, whose weights are sums of station constants times those of a_n k_n (1, k_n,
-    k_n F_i, k_n Z_i, k_n^2 Y_i) ~ sum_j (W1_ij, Wk_ij, WkF_ij, WkZ_ij, WkY_ij) C_nj: one truncated
-    singular value decomposition of the (component, 8 x station) matrix of the eight, each
-    station's column scaled to unit norm. Its r is the least for which every column's residual norm over the components (the
+    six terms a_n k_n w_i(k_n) ~ sum_j W_ij C_nj (w of ``SectionDecay.heel_weights``): one
+    truncated singular value decomposition of the (component, ``DECAY_BLOCKS`` x station) matrix
+    of the nine, each station's column scaled to unit norm. Its r is the least for which every column's residual norm over the components (the
     standard deviation of the term's error over random phases) is within ``DECAY_RANK_TOLERANCE`` of
     the column's norm, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
     is not enough). Returns the line factors C (nc, r) and the station
-    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY and the six of ``SectionDecay.heel_weights``
-    (W1 - WF, A (W1 - WF), A (z_c (W1 - WF) + WY - WZ), Wk, A Wk, A (z_c (Wk - WkF) + WkY - WkZ)), each factor's sign
+    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY and the six heeled ones, each factor's sign
     chosen so that its weights WF sum to >= 0 (one regular wave's weights then do not depend on
     its amplitude's sign)."""
     amp = np.asarray(amp, float)
     k = np.asarray(k, float)
     F, Z, Y = decay.moments(k)  # (nst, nc) each
     nst = F.shape[0]
-    one = np.ones_like(F)
-    kk = k[None, :]
-    M = np.concatenate([F, Z, Y * kk, one, one * kk, F * kk, Z * kk, Y * kk**2]).T * (amp * k)[:, None]
+    M = np.concatenate([F, Z, Y * k[None, :], *decay.heel_weights(k)]).T * (amp * k)[:, None]
     norm = np.sqrt(np.sum(M**2, axis=0))
     live = norm > 0
     Mn = M / np.where(live, norm, 1.0)
@@ -229,14 +225,10 @@ def decay_factors(amp, k, decay):
                           f"error at its worst station, above DECAY_RANK_TOLERANCE {100 * DECAY_RANK_TOLERANCE:g} %",
                           RuntimeWarning, stacklevel=2)
     C = U[:, :r] * S[:r]
-    W = Vt[:r].T * norm[:, None]  # (8 nst, r)
+    W = Vt[:r].T * norm[:, None]  # (DECAY_BLOCKS nst, r)
     flip = np.where(W[:nst].sum(axis=0) < 0, -1.0, 1.0)
-    WF, WZ, WY, W1, Wk, WkF, WkZ, WkY = (W[b * nst:(b + 1) * nst] * flip for b in range(8))
-    A = decay.total[:, None]
-    zc = decay.centroid_height[:, None]
-    blocks = (WF, WZ, WY, W1 - WF, A * (W1 - WF), A * (zc * (W1 - WF) + WY - WZ),
-              Wk, A * Wk, A * (zc * (Wk - WkF) + WkY - WkZ))
-    return C * flip, np.ascontiguousarray(np.concatenate(blocks, axis=1))
+    return C * flip, np.ascontiguousarray(np.concatenate([W[b * nst:(b + 1) * nst] * flip
+                                                          for b in range(DECAY_BLOCKS)], axis=1))
 
 
 class LineWaves:
