@@ -54,7 +54,7 @@ def three_dof_cpu(model, waves, dt, seconds):
     t0 = time.process_time()
     wtab = station_wave_table(*waves, model.sec.x, model.heading_deg, model.speed, t_half, model.decay,
                               dtype=np.float32)
-    K._simulate(*kernel_args(model.sec, model.tables), p, wtab, dt, 0, n, model.s0[:K.N_STATE], np.radians(90.0),
+    K._simulate(*kernel_args(model.sec, model.tables), p, wtab, np.empty((0, 6)), dt, 0, n, model.s0[:K.N_STATE], np.radians(90.0),
                 out, np.empty((0, 6)))
     return time.process_time() - t0
 

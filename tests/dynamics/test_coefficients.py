@@ -185,7 +185,7 @@ def test_shipped_ships_keep_the_default_coefficients(shipped):
     m, L, B = float(st["mass"]), float(st["lwl"]), float(st["bwl"])
     # no coefficient given: every default applies
     assert set(ship.data["dynamics"]) == {"hydro", "roll_damping", "ikeda_amplitude_deg", "ikeda_normal_force",
-                                          "decay_heel_deg"}
+                                          "decay_heel_deg", "diffraction"}
     assert co.mass == m
     assert co.i44 == m * (0.40 * B) ** 2 and co.i55 == m * (0.25 * L) ** 2 and co.i66 == m * (0.25 * L) ** 2
     assert co.a33 == 1.0 * m and co.a44 == 0.2 * co.i44 and co.a55 == 1.0 * co.i55

@@ -289,7 +289,7 @@ def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler, waterline, 
     p3 = parameters(co, ship.rho, float(st["lcg"]), float(st["kg"]), beta)
     out3 = np.empty((n + 1, K.N_STATE))
     K._simulate(*kernel_args(sec, tabs), p3, station_wave_table(*comps, x, beta, SPEED, t, model.decay,
-                                                              curvature=waterline == "curved"), dt, 0, n,
+                                                              curvature=waterline == "curved"), np.empty((0, 6)), dt, 0, n,
                 s0[:K.N_STATE], np.radians(90.0), out3, np.empty((0, 6)))
     for j in (K.S_Z, K.S_ROLL, K.S_PITCH):
         scale = np.max(np.abs(out3[:, j] - out3[0, j])) + 1e-3

@@ -31,7 +31,7 @@ def free_roll(sec, st, co, rho, phi0_deg, duration, dt, free=THREE_DOF):
     wtab = np.zeros((2 * n + 1, len(sec.x), 2))
     out = np.empty((n + 1, K.N_STATE))
     s0 = initial_state(sec, st, phi0_deg)
-    last = K._simulate(*kernel_args(sec), p, wtab, dt, 0, n, s0, np.radians(90.0), out, np.empty((0, 6)))
+    last = K._simulate(*kernel_args(sec), p, wtab, np.empty((0, 6)), dt, 0, n, s0, np.radians(90.0), out, np.empty((0, 6)))
     assert last == n, "capsized"
     return p, out
 

@@ -89,7 +89,7 @@ def test_mean_wave_surge_force_is_the_time_domain_mean():
         p[K.P_FREE:K.P_FREE + 6] = (0, 0, 1, 0, 1, 0)
         out = np.empty((n + 1, K.N_STATE))
         forces = np.empty((n + 1, 6))
-        K._simulate(*kernel_args(model.sec, model.tables), p, wtab, dt, 0, n, model.s0[:K.N_STATE].copy(),
+        K._simulate(*kernel_args(model.sec, model.tables), p, wtab, np.empty((0, 6)), dt, 0, n, model.s0[:K.N_STATE].copy(),
                     np.radians(90.0), out, forces)
         mean_fx = forces[n - 4000:n, 0].mean()  # the last 20 encounter periods
         assert mean_fx == pytest.approx(lin, rel=0.02), U

@@ -152,11 +152,24 @@ def beam_sea_model(model, w_min: float = 0.05, w_max: float = 7.0, n_coarse: int
         amp = 0.5 * EXCITATION_STEEPNESS * lam
         loads = KernelLoads(sec, model.ship.rho, lcg, kg, regular(2 * amp, lam), 90.0, 0.0, model.decay)
         F[i] = fk_excitation(loads, h0, th0, w) / amp
+    if model.diffraction is not None:
+        F += diffraction_excitation(model, h0, th0, coarse)
     fine = np.arange(w_min, w_max + 0.5 * dw, dw)
     force = CubicSpline(coarse, F.real, axis=0)(fine) + 1j * CubicSpline(coarse, F.imag, axis=0)(fine)
     return BeamSeaModel(fine, force, C, np.array([co.mass + co.a33, co.i44 + co.a44, co.i55 + co.a55]),
                         np.array([co.b33, co.b44, co.b55]), co.b44q_profile(),
                         np.radians(np.linspace(0.0, 90.0, K.N_AMPLITUDES)), co.natural_period("roll"))
+
+
+def diffraction_excitation(model, h0: float, th0: float, omega) -> np.ndarray:
+    """Generalized diffraction forces (n, 3) (heave of G, roll, pitch) per unit wave amplitude of the
+    ``model``'s diffraction force (:mod:`stabflow.dynamics.diffraction`, heading 90 degree) at the
+    wave frequencies ``omega`` [rad/s], the ship at its equilibrium (origin height h0 [m], trim th0
+    [rad]): the same force the time domain adds to its loads, in this module's e^(i w t) convention
+    (the complex conjugate of Capytaine's e^(-i w t) amplitude)."""
+    from stabflow.dynamics.diffraction import generalized
+
+    return generalized(model.diffraction.transfer(omega), float(model.st["lcg"]), float(model.st["kg"]), h0, th0)
 
 
 def linearised_response(bsm: BeamSeaModel, S: np.ndarray, c44: float | None = None, tol: float = 1e-6,

@@ -581,13 +581,16 @@ def _loads(xs, dx, ys, zs, npts, tab, lim, p, wave, s, f, work):
 
 
 @njit(cache=True)
-def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f, work, mq, r):
+def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, fd, s, ds, f, work, mq, r):
     """State derivative of s = (q, q') (``S_*`` positions); p = parameter vector (``P_*``).
 
     The FK + HS loads are evaluated with the body origin placed from G's height (``_loads``) at
     the stations' tabulated wave (3-DOF: surge, sway and yaw held, so the stations' horizontal
-    positions are the tabulated ones)."""
+    positions are the tabulated ones); ``fd`` (6,) is added to them: the body-linear diffraction
+    force at this instant (:mod:`stabflow.dynamics.diffraction`; zeros without it)."""
     _loads(xs, dx, ys, zs, npts, tab, lim, p, wave, s, f, work)
+    for q in range(6):
+        f[q] += fd[q]
     for j in range(6):
         ds[j] = s[S_RATE + j]
     _accelerations(p, s, f, ds[S_RATE:S_RATE + 6], mq, r)
@@ -596,13 +599,15 @@ def _rhs(xs, dx, ys, zs, npts, tab, lim, p, wave, s, ds, f, work, mq, r):
 
 
 @njit(cache=True, nogil=True)
-def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_cap, out, forces):
+def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, ftab, dt, n0, nsteps, s0, phi_cap, out, forces):
     """Fixed-step RK4 from step ``n0`` to ``nsteps``; ``wtab`` (2 nsteps + 1, nst, nq) on the
-    half-step grid.
+    half-step grid, ``ftab`` (2 nsteps + 1, 6) float64 the diffraction force on the same grid
+    (:mod:`stabflow.dynamics.diffraction`), or a (0, 6) array without it.
 
     ``out`` (nsteps + 1, N_STATE) receives the state (row n0 is set to ``s0``); ``forces``
-    (nsteps + 1, 6) the FK+HS loads, or pass a (0, 6) array to skip them. Stops when
-    |phi| > phi_cap (capsize). Returns the index of the last step done; no allocation in the loop.
+    (nsteps + 1, 6) the FK+HS loads (without the diffraction force), or pass a (0, 6) array to skip
+    them. Stops when |phi| > phi_cap (capsize). Returns the index of the last step done; no
+    allocation in the loop.
     """
     ns = N_STATE
     s = np.empty(ns)
@@ -623,18 +628,23 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
         _loads(xs, dx, ys, zs, npts, tab, lim, p, wtab[2 * n0], s, f, work)
         for q in range(6):
             forces[n0, q] = f[q]
+    zero = np.zeros(6)
+    dif = ftab.shape[0] > 0
     for n in range(n0, nsteps):
         j = 2 * n
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j], s, k1, f, work, mq, r)
+        f0 = ftab[j] if dif else zero
+        f1 = ftab[j + 1] if dif else zero
+        f2 = ftab[j + 2] if dif else zero
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j], f0, s, k1, f, work, mq, r)
         for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k1[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k2, f, work, mq, r)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], f1, tmp, k2, f, work, mq, r)
         for q in range(ns):
             tmp[q] = s[q] + 0.5 * dt * k2[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], tmp, k3, f, work, mq, r)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 1], f1, tmp, k3, f, work, mq, r)
         for q in range(ns):
             tmp[q] = s[q] + dt * k3[q]
-        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], tmp, k4, f, work, mq, r)
+        _rhs(xs, dx, ys, zs, npts, tab, lim, p, wtab[j + 2], f2, tmp, k4, f, work, mq, r)
         prev = s[S_ROLL]
         for q in range(ns):
             s[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])
@@ -651,13 +661,15 @@ def _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtab, dt, n0, nsteps, s0, phi_c
 
 
 @njit(cache=True, parallel=True)
-def _simulate_batch(xs, dx, ys, zs, npts, tab, lim, p, wtabs, dt, nsteps, s0, phi_cap, out, last):
-    """Records in parallel (``prange``): ``wtabs`` (nrec, 2 nsteps + 1, nst, nq) → ``out``
+def _simulate_batch(xs, dx, ys, zs, npts, tab, lim, p, wtabs, ftabs, dt, nsteps, s0, phi_cap, out, last):
+    """Records in parallel (``prange``): ``wtabs`` (nrec, 2 nsteps + 1, nst, nq) and ``ftabs``
+    (nrec, 2 nsteps + 1, 6) the diffraction force (or (nrec, 0, 6) without it) → ``out``
     (nrec, nsteps + 1, N_STATE), ``last`` (nrec,) index of the last step done. Each record is the same
     computation as ``_simulate``, so results do not depend on the number of threads."""
     nofo = np.empty((0, 6))
     for r in prange(wtabs.shape[0]):
-        last[r] = _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtabs[r], dt, 0, nsteps, s0, phi_cap, out[r], nofo)
+        last[r] = _simulate(xs, dx, ys, zs, npts, tab, lim, p, wtabs[r], ftabs[r], dt, 0, nsteps, s0, phi_cap, out[r],
+                            nofo)
 
 
 # --- 1-DOF roll in Gaussian excitation (the analytic-grade capsize case, issue 16) ------------------

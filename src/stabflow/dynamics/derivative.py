@@ -307,7 +307,7 @@ def run_full(model, waves, heading_deg: float, duration: float, dt: float, s0=No
                               model.decay)
     out = np.empty((nsteps + 1, K.N_STATE))
     s = model.s0 if s0 is None else np.asarray(s0, float)
-    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, dt, 0, nsteps, s, np.radians(90.0), out,
+    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, np.empty((0, 6)), dt, 0, nsteps, s, np.radians(90.0), out,
                      np.empty((0, 6)))
     return out, last
 

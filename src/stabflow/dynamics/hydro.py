@@ -43,8 +43,9 @@ def bem_mesh(ship, max_faces: int = 20000):
     return m
 
 
-def immersed_body(mesh, h0, th0, xg, zg):
-    """Capytaine FloatingBody of the immersed hull with heave/roll/pitch about G."""
+def immersed_body(mesh, h0, th0, xg, zg, dofs=DOFS):
+    """Capytaine FloatingBody of the immersed hull with the rigid-body modes ``dofs`` (default heave,
+    roll, pitch) about G."""
     import capytaine as cpt
 
     cpt.set_logging("ERROR")
@@ -52,7 +53,7 @@ def immersed_body(mesh, h0, th0, xg, zg):
     ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
     body = cpt.FloatingBody(mesh=cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)),
                             dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge)))
-    return body.immersed_part().with_only_dofs(DOFS)
+    return body.immersed_part().with_only_dofs(list(dofs))
 
 
 def radiation(body, omega, rho, solver=None):

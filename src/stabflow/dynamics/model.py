@@ -449,7 +449,7 @@ def _check_waterline(waterline: str) -> bool:
 def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves, heading_deg: float,
              speed: float, duration: float, dt: float, *, dphi_dzdt: bool = False, phi0_deg: float = 0.0,
              phi_cap_deg: float = 90.0, tables: SectionTables | None = None,
-             waterline: str = "planar") -> xr.Dataset:
+             waterline: str = "planar", diffraction=None) -> xr.Dataset:
     """Simulate one record from the calm-water equilibrium (optionally heeled to ``phi0_deg``).
 
     Parameters
@@ -470,6 +470,9 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
         The wave across each section: its tangent plane at the centreline (paper 000, the default)
         or with the cross-beam curvature terms (:func:`stabflow.dynamics._kernels._curved_sections`;
         exact clipping, ``tables`` unused).
+    diffraction : stabflow.dynamics.diffraction.Diffraction, optional
+        The body-linear diffraction force added to the FK + HS loads (its table's heading must be
+        ``heading_deg``); default none (paper 000's model).
 
     Returns
     -------
@@ -490,11 +493,16 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
         wtab = station_wave_table(amp, omega, phase, sec.x, heading_deg, speed, t_half, decay, curvature=curved)
     else:
         wtab = np.zeros((len(t_half), len(sec.x), 2))
+    ftab = np.empty((0, 6))
+    if diffraction is not None:
+        if abs(diffraction.heading_deg - heading_deg) > 1e-9:
+            raise ValueError(f"the diffraction force is for {diffraction.heading_deg} deg, the waves come from {heading_deg} deg")
+        ftab = diffraction.force_table(amp, omega, phase, speed, t_half)
     p = parameters(co, rho, lcg, kg, heading_deg)
     s0 = rest if phi0_deg == 0.0 else initial_state(sec, st, phi0_deg)
     out = np.empty((nsteps + 1, K.N_STATE))
     forces = np.empty((nsteps + 1, 6))
-    done = _simulate(*kernel_args(sec, None if curved else tables), p, wtab, dt, 0, nsteps, s0,
+    done = _simulate(*kernel_args(sec, None if curved else tables), p, wtab, ftab, dt, 0, nsteps, s0,
                      np.radians(phi_cap_deg), out, forces)
     n = done + 1
     t = np.arange(n) * dt

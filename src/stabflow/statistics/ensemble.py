@@ -23,7 +23,7 @@ import xarray as xr
 
 from stabflow.config import Ship
 from stabflow.dynamics import coefficients
-from stabflow.dynamics._kernels import N_STATE, P_G, S_PITCH, S_RATE, S_ROLL, S_Z, _simulate, _simulate_batch
+from stabflow.dynamics._kernels import N_STATE, P_G, S_PITCH, S_RATE, S_ROLL, S_Z, _origin_height, _simulate, _simulate_batch
 from stabflow.dynamics.model import initial_state, parameters, section_decay
 from stabflow.dynamics.rigid_body import lateral_specific_force
 from stabflow.dynamics.tables import SectionTables, kernel_args, section_tables
@@ -61,6 +61,9 @@ class Model:
     derivative: object = None
     #: the coefficients (mass, inertias, added mass, damping) the model was built with
     co: object = None
+    #: the body-linear diffraction force (:class:`stabflow.dynamics.diffraction.Diffraction`) of ships
+    #: with ``dynamics.diffraction: capytaine``, 3-DOF volume-based records; None without it
+    diffraction: object = None
 
     @property
     def dt(self) -> float:
@@ -88,7 +91,9 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
     """Cut the hull at ``cond['stations']``, apply the condition's KG, find the equilibrium,
     coefficients (Capytaine ``hydro`` if the ship uses it) and the sectional tables; 6-DOF
     conditions of a ship with ``manoeuvring.heave_pitch_radiation: memory`` take its memory model
-    from the ``radiation`` step's dataset ``radiation`` (computed now if None)."""
+    from the ``radiation`` step's dataset ``radiation`` (computed now if None). 3-DOF volume-based
+    conditions of a ship with ``dynamics.diffraction: capytaine`` add the body-linear diffraction
+    force (:func:`diffraction_for`)."""
     if cond.get("waterline", "planar") == "curved" and cond.get("model", "volume") == "derivative":
         from stabflow import StabflowError
 
@@ -133,7 +138,23 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
         fit = derivative_fit_settings(cond.get("derivative_fit", {}))
         e = sea.edges()  # transfer functions over the seaway's frequencies
         model.derivative = fit_for(model, fit, np.linspace(float(e[0]), float(e[-1]), int(fit["frequencies"])))
+    if s.data["dynamics"].get("diffraction", "none") == "capytaine" and six is None and model.derivative is None:
+        model.diffraction = diffraction_for(model)
     return model
+
+
+def diffraction_for(model: Model):
+    """The diffraction force of ``model``'s ship at its condition's heading and loading
+    (:func:`stabflow.dynamics.diffraction.ship_diffraction` at that one heading: about 40 BEM solves,
+    seconds; kept for the process's other conditions of the same ship, loading and heading)."""
+    from stabflow.dynamics.diffraction import Diffraction, ship_diffraction
+
+    lcg, kg = float(model.st["lcg"]), float(model.st["kg"])
+    rest = model.s0
+    h0 = _origin_height(rest[S_Z], 0.0, rest[S_PITCH], lcg, kg)
+    heading = float(model.cond["heading_deg"])
+    table = ship_diffraction(model.ship, (h0, float(rest[S_PITCH]), lcg, kg), model.ship.rho, (heading,))
+    return Diffraction(table, heading)
 
 
 def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
@@ -144,17 +165,26 @@ def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
                               model.decay, dtype=dtype, curvature=model.curved)
 
 
+def force_table(model: Model, components, times) -> np.ndarray:
+    """The diffraction force (nt, 6) of the wave ``components`` at ``times`` (the kernel's ``ftab``),
+    or a (0, 6) array for a model without it."""
+    if model.diffraction is None:
+        return np.empty((0, 6))
+    return model.diffraction.force_table(*components, model.speed, times)
+
+
 def record_table(model: Model, record: int):
-    """The record's excitation on the half-step grid, computed once per record: the stations' wave
-    table (volume-based 3-DOF), the derivative model's coefficient table, or None (6-DOF: the wave
-    is tabulated around the ship chunk by chunk)."""
+    """The record's excitation on the half-step grid, computed once per record: (the stations' wave
+    table, the diffraction force table) (volume-based 3-DOF), the derivative model's coefficient
+    table, or None (6-DOF: the wave is tabulated around the ship chunk by chunk)."""
     if model.six is not None:
         return None
     if model.derivative is not None:
         t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
         return model.derivative.coefficient_table(model.sea.components(model.cond["seed"], record), t_half,
                                                   dtype=np.float32)
-    return wave_table(model, record)
+    t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
+    return wave_table(model, record), force_table(model, model.sea.components(model.cond["seed"], record), t_half)
 
 
 def state_size(model: Model) -> int:
@@ -183,7 +213,8 @@ def advance(model: Model, record: int, table, s, n0: int, n1: int, out: np.ndarr
         from stabflow.dynamics.derivative import step_derivative
 
         return step_derivative(model.derivative, table, model.dt, n0, n1, s, phi_cap, out)
-    return _simulate(*kernel_args(model.sec, model.tables), model.p, table, model.dt, n0, n1, s, phi_cap, out,
+    wtab, ftab = table
+    return _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, ftab, model.dt, n0, n1, s, phi_cap, out,
                      np.empty((0, 6)))
 
 
@@ -335,9 +366,11 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
     for b0 in range(0, len(recs), BATCH):
         batch = recs[b0: b0 + BATCH]
         tabs = np.stack([wave_table(model, r) for r in batch])
+        t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
+        ftabs = np.stack([force_table(model, model.sea.components(cond["seed"], r), t_half) for r in batch])
         out = np.empty((len(batch), model.nsteps + 1, N_STATE))
         last = np.empty(len(batch), np.int64)
-        _simulate_batch(*args, model.p, tabs, model.dt, model.nsteps, model.s0, np.radians(90.0), out, last)
+        _simulate_batch(*args, model.p, tabs, ftabs, model.dt, model.nsteps, model.s0, np.radians(90.0), out, last)
         for q, r in enumerate(batch):
             wave_mid = tabs[q, ::2, model.mid_station, 0].astype(float)
             per.append(record_statistics(model, r, out[q], int(last[q]), wave_mid))
@@ -444,7 +477,19 @@ def condition_attrs(model: Model) -> dict:
             "speed_kn": float(c["speed_kn"]), "heading_deg": float(c["heading_deg"]), "duration": float(c["duration"]),
             "dt": model.dt, "seed": int(c["seed"]), "stations": len(model.sec.x), "kg": float(model.st["kg"]),
             "dof": int(c.get("dof", 3)), "model": str(c.get("model", "volume")),
-            "gm": float(model.st["gm"]), "roll_period": model.roll_period}
+            "gm": float(model.st["gm"]), "roll_period": model.roll_period, "diffraction": diffraction_label(model)}
+
+
+def diffraction_label(model: Model) -> str:
+    """What the records carry of the diffraction force (an attribute of every ensemble file)."""
+    asked = model.ship.data["dynamics"].get("diffraction", "none") == "capytaine"
+    if model.diffraction is not None:
+        return f"capytaine (zero speed, panels resolve w <= {model.diffraction.omega_max:.3g} rad/s)"
+    if asked and model.six is not None:
+        return "none: the 6-DOF model runs without it (the ship asks for capytaine)"
+    if asked:
+        return "none: the derivative model runs without it (the ship asks for capytaine)"
+    return "none"
 
 
 def merge(shards: list[xr.Dataset]) -> xr.Dataset:

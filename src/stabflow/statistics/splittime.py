@@ -53,7 +53,7 @@ from scipy import stats
 
 from stabflow.dynamics._kernels import N_STATE, S_RATE, S_ROLL, _simulate
 from stabflow.dynamics.tables import kernel_args
-from stabflow.statistics.ensemble import Model, advance, record_table, simulate_record
+from stabflow.statistics.ensemble import Model, advance, force_table, record_table, simulate_record
 from stabflow.waves.synthesis import one_blas_thread, station_wave_table
 from stabflow.statistics.extremes import decluster
 from stabflow.statistics.tail import shape_share
@@ -124,7 +124,8 @@ def sub_step(model: Model, components, s: np.ndarray, t0: float, tau: float) -> 
     amp, w, ph = components
     tab = station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, times, model.decay,
                              dtype=np.float32, curvature=model.curved)
-    _simulate(*kernel_args(model.sec, model.tables), model.p, tab, tau, 0, 1, np.asarray(s, float), np.inf, out,
+    ftab = force_table(model, components, times)
+    _simulate(*kernel_args(model.sec, model.tables), model.p, tab, ftab, tau, 0, 1, np.asarray(s, float), np.inf, out,
               np.empty((0, 6)))
     return out[1]
 

@@ -1,6 +1,6 @@
 """Validation rows for the 3-DOF time-domain model (:mod:`stabflow.dynamics`).
 
-:func:`dynamics_checks` returns the 32 rows below for every ship: PASS/FAIL, SKIPPED with the
+:func:`dynamics_checks` returns the 34 rows below for every ship: PASS/FAIL, SKIPPED with the
 reason where a row does not apply (no hull mesh for the pressure reference, a mesh too costly to
 integrate over a record, topsides the mesh does not carry), FAIL with the reason where its
 computation raised or gave a non-finite value. Deviations are ``100 (time domain / reference - 1)``
@@ -131,6 +131,18 @@ Heel's part of that roll moment (1 row, independent; tolerance 3 %)
     against pressure integration with decay (:func:`heeled_roll_moment_with_decay`). Without the
     heeled section's decay terms (``_kernels._fkhs``, 2026-12-06) the barge was 15-116 % off in
     beam and oblique waves of 40-120 m; with them 0.3-1.8 %. SKIPPED as the volume-vs-pressure rows.
+The diffraction option's excitation (2 rows, independent; tolerance 4 %)
+    Beam waves, ship held at its calm-water equilibrium, zero speed: the generalized roll force at
+    the roll frequency and heave force at twice it of the hybrid model (``dynamics.diffraction:
+    capytaine``: the kernel's FK with the pressure decay plus Capytaine's diffraction force, as the
+    3-DOF records use them) against Capytaine's FK plus diffraction on the panels
+    (:func:`hybrid_excitation`; every ship with a BEM mesh, whatever its option). The reference
+    text gives the kernel's FK alone against Capytaine's and |diffraction| / |FK|. Measured: roll
+    dtmb5415 +2.1 %, trawler +1.9 % (FK alone +2.5, +2.3 %), barge -7.9 % (FK alone +1.3 %: its
+    diffraction moment about G, 1.17 of the FK, nearly cancels it); heave +10.7 % (dtmb5415),
+    +18.5 % (trawler), +11.7 % (barge): the planar waterline's FK excess in short beam waves (FK
+    alone +18, +39, +12 %). SKIPPED without a BEM mesh (Wigley; the DTC's is over 10,000
+    triangles) or where the panels do not resolve the wave at 2 w_phi.
 Long head waves (3 rows, consistency)
     lambda = 20 L, H/lambda = 1/500, head seas (:func:`stabflow.dynamics.rao.rao_sweep`): heave / a
     and pitch / (k a) vs the long-wave limit of the same equations, the ship following the
@@ -146,6 +158,7 @@ Ikeda roll damping (2 rows, independent; band 0.65-1.35)
 
 The pieces (:func:`roll_decay`, :func:`calm_rest`, :func:`pressure_mesh`,
 :func:`volume_vs_pressure`, :func:`dphi_dzdt_vs_pressure`, :func:`roll_excitation_with_decay`,
+:func:`hybrid_excitation`,
 :func:`small_wave_deviations`,
 :class:`KernelLoads`, :func:`long_wave_limit`) are public so that the unit tests of
 :mod:`stabflow.dynamics` can call them.
@@ -206,6 +219,9 @@ BEAM_STEEPNESS = 1.0 / 500.0
 TOL_ROLL_DECAY = 2.0
 #: the heel's part of the roll moment with the pressure decay: heel [degree], steepness, tolerance [%]
 HEEL_DECAY_DEG, HEEL_DECAY_STEEPNESS, TOL_HEEL_DECAY = 10.0, 1.0 / 100.0, 3.0
+#: the hybrid model's beam-sea excitation (kernel FK + Capytaine diffraction) against Capytaine's FK +
+#: diffraction [%]: the tolerance of the other FK rows against a different method (TOL_PRESSURE)
+TOL_HYBRID = 4.0
 #: long head waves: lambda / L and H / lambda
 LONG_RATIO, LONG_STEEPNESS = 20.0, 1.0 / 500.0
 
@@ -509,6 +525,58 @@ def roll_excitation_with_decay(sec: Sections, st: xr.Dataset, co: Coefficients, 
             "exact": 100 * (roll["kernel"] / roll["exact"] - 1), "wavelength": lam, "reference": roll["planar"]}
 
 
+def bem_hull(ship: Ship):
+    """The ship's BEM mesh (:func:`stabflow.dynamics.hydro.bem_mesh`, at most ``MAX_PRESSURE_FACES``
+    triangles), or NotApplicable with the reason."""
+    from stabflow import StabflowError
+    from stabflow.dynamics.hydro import bem_mesh
+
+    try:
+        return bem_mesh(ship, max_faces=MAX_PRESSURE_FACES)
+    except StabflowError as exc:
+        raise NotApplicable(f"no BEM: {exc}") from exc
+
+
+def hybrid_excitation(mesh, sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h0: float,
+                      th0: float) -> dict:
+    """The hybrid model's wave excitation in beam waves (ship held at its calm-water equilibrium): the
+    kernel's Froude-Krylov loads with the pressure decay plus Capytaine's diffraction force
+    (:mod:`stabflow.dynamics.diffraction`, the option ``dynamics.diffraction: capytaine``) against
+    Capytaine's Froude-Krylov plus diffraction force (panels), as generalized forces, roll at the roll
+    frequency w_phi and heave at 2 w_phi (the heave-roll resonance of the DSA's beam seas), on the
+    BEM ``mesh`` (:func:`bem_hull`).
+
+    Returns ``roll`` and ``heave`` deviations [%] of the magnitudes, ``fk_roll`` and ``fk_heave`` [%]
+    (the kernel's FK alone against Capytaine's FK), ``diffraction_roll`` and ``diffraction_heave``
+    (|diffraction| / |FK| of Capytaine) and the ``frequencies`` [rad/s]. Raises NotApplicable for
+    hulls whose panels do not resolve the wave at 2 w_phi."""
+    from stabflow.dynamics.diffraction import DOFS6, diffraction_dataset, generalized, resolved_omega
+    from stabflow.dynamics.hydro import immersed_body
+    from stabflow.dynamics.model import section_decay
+
+    lcg, kg = float(st["lcg"]), float(st["kg"])
+    body = immersed_body(mesh, h0, th0, lcg, kg, dofs=DOFS6)
+    wn = co.natural_frequency("roll")
+    ws = np.array([wn, 2 * wn])
+    if ws[-1] > resolved_omega(body):
+        raise NotApplicable(f"the panels resolve waves up to {resolved_omega(body):.2f} rad/s, not 2 w_phi = "
+                            f"{ws[-1]:.2f} rad/s")
+    table = diffraction_dataset(body, rho, omegas=ws, headings_deg=[BEAM])
+    cap = table.sel(heading=BEAM).isel(omega=slice(1, None))
+    D = generalized((cap["diffraction_re"] + 1j * cap["diffraction_im"]).values, lcg, kg, h0, th0)
+    F = generalized((cap["froude_krylov_re"] + 1j * cap["froude_krylov_im"]).values, lcg, kg, h0, th0)
+    dec = section_decay(sec, h0, th0)
+    out = {"frequencies": ws}
+    for i, (name, j) in enumerate((("roll", 1), ("heave", 0))):
+        lam = float(2 * np.pi * G / ws[i] ** 2)
+        a = lam / 1000.0
+        K_ = fk_excitation(KernelLoads(sec, rho, lcg, kg, regular(2 * a, lam), BEAM, 0.0, dec), h0, th0, ws[i]) / a
+        out[name] = 100 * (abs(K_[j] + D[i, j]) / abs(F[i, j] + D[i, j]) - 1)
+        out[f"fk_{name}"] = 100 * (abs(K_[j]) / abs(F[i, j]) - 1)
+        out[f"diffraction_{name}"] = abs(D[i, j]) / abs(F[i, j])
+    return out
+
+
 def heeled_roll_moment_with_decay(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, mesh, h0: float,
                                   th0: float, heel_deg: float = HEEL_DECAY_DEG) -> dict:
     """The heel's part of the roll moment in beam waves at twice the natural roll frequency (the
@@ -748,7 +816,7 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
     Returns
     -------
     list of Check
-        The 32 rows described in the module docstring, in that order, every one present: PASS or
+        The 34 rows described in the module docstring, in that order, every one present: PASS or
         FAIL, SKIPPED with the reason where a check does not apply, FAIL with the reason where its
         computation raised or gave a non-finite value. Never raises for a failing computation.
     """
@@ -827,6 +895,14 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
             return roll_excitation_with_decay(sec, st, co, rho, mesh_for(lam / 1000.0, None), h0, th0)
 
         return lazy.get("roll_decay_beam", run)
+
+    def hybrid():
+        def run():
+            mesh = bem_hull(ship)  # SKIPPED without a mesh, whatever else fails
+            sec, co, h0, th0 = b()
+            return hybrid_excitation(mesh, sec, st, co, rho, h0, th0)
+
+        return lazy.get("hybrid", run)
 
     def heel_decay_beam():
         def run():
@@ -995,6 +1071,21 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
         row.reference += (f": {r['reference']:.4g} N m (GM amplitude {r['gm_amplitude']:.3f} m) at lambda "
                           f"{r['wavelength']:.1f} m")
     rows.append(row)
+    # --- the hybrid model's excitation (kernel FK + Capytaine diffraction, dynamics.diffraction) against
+    # Capytaine's FK + diffraction: the FK from a different method (panels) -> independent
+    for name, label in (("roll", "roll at the roll frequency"), ("heave", "heave at twice the roll frequency")):
+        row = _row(lambda name=name: hybrid()[name],
+                   f"diffraction option, beam waves, ship held: {label}, kernel FK with decay + Capytaine diffraction "
+                   "vs Capytaine FK + diffraction", "%",
+                   "Capytaine (BEM, linear potential flow) Froude-Krylov plus diffraction force on the hull at its "
+                   "calm-water equilibrium, as generalized forces about G, 90 deg, zero speed", "independent",
+                   tolerance=TOL_HYBRID)
+        if row.status != "SKIPPED" and np.isfinite(row.value):
+            r = hybrid()
+            row.reference += (f"; the kernel's FK alone against Capytaine's {r[f'fk_{name}']:+.1f} %; |diffraction| / "
+                              f"|FK| {r[f'diffraction_{name}']:.2f}; w {r['frequencies'][0 if name == 'roll' else 1]:.3f} "
+                              "rad/s")
+        rows.append(row)
     # --- long head waves: the long-wave limit of the same equations -> consistency
     ref = ("long-wave limit: ship following the surface, |[-w^2 M + i w B + C]^-1 C X_qs| (the 1-DOF "
            "1/|1 - w^2 m/c + i w b/c| without heave-pitch coupling); lambda = 20 L, H/lambda = 1/500, head seas")

@@ -1,0 +1,199 @@
+"""Linear diffraction force from Capytaine for the volume-based time domain (the hybrid model).
+
+Paper 000 (introduction) and paper 004 (LAMP-2, section 2 and its Table 2) describe the hybrid
+time-domain codes: Froude-Krylov and hydrostatic forces body-nonlinear over the instantaneous
+wetted hull, the wave-body disturbance (radiation, diffraction) from a body-linear potential-flow
+solution. stabflow's kernel computes the first exactly (volume-based, paper 000) and takes the
+radiation as added mass and damping (or a memory model); this module adds the body-linear
+diffraction force, the scattered wave's pressure on the hull at its calm-water equilibrium.
+
+For each wave component n (amplitude a_n, frequency w_n, phase e_n; the stations' wave is
+eta = a cos psi with psi = k cos(beta) x + e - w_e t, :func:`stabflow.waves.synthesis.station_wave_table`)
+the force on the hull is Re(X(w_n, beta) a_n e^(i psi_n(x = 0))), with X the complex diffraction force
+per unit wave amplitude of Capytaine's problem (e^(-i w t) convention, incident wave
+Re(e^(i(k (x cos beta + y sin beta) - w t))), the same x forward, y to port, z up and the same body
+origin as the stations). So F(t) = sum_n [Re c_n cos(w_e,n t) + Im c_n sin(w_e,n t)] with
+c_n = a_n X(w_n) e^(i e_n): one more time series, added to the kernel's loads (moments about G).
+
+Approximations, stated in the README: zero-speed diffraction of each component at its own
+frequency, applied with its encounter phase (forward-speed terms of the diffraction left out, as in
+the radiation's constant coefficients); the hull at its upright calm-water equilibrium (body-linear);
+X is interpolated linearly in frequency and heading on a table, zero in the long-wave limit
+(w = 0) and zero beyond the table's highest frequency, where the panels no longer resolve the
+wave (eight panel edges per wave length).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from stabflow.constants import G
+from stabflow.io import annotate
+from stabflow.waves.synthesis import _time_series_table, encounter_frequency, one_blas_thread
+
+#: Capytaine's rigid-body modes in the kernel's load order (force, then moment about G)
+DOFS6 = ["Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw"]
+#: panel edges per shortest resolved wave length (the table's highest frequency)
+PANELS_PER_WAVELENGTH = 8.0
+#: the table's headings [degree] (0 following, 180 head): the ensemble headings' range
+HEADINGS_DEG = np.arange(0.0, 181.0, 15.0)
+#: frequencies of the table, equally spaced up to the resolved limit (w = 0 is added: X = 0)
+N_FREQUENCIES = 40
+
+
+def resolved_omega(body) -> float:
+    """Highest wave frequency [rad/s] the panels resolve: wave length ``PANELS_PER_WAVELENGTH``
+    mean panel edges (edge = sqrt(2 x mean face area), triangles and quadrangles alike)."""
+    edge = float(np.sqrt(2.0 * np.mean(body.mesh.faces_areas)))
+    lam = PANELS_PER_WAVELENGTH * edge
+    return float(np.sqrt(2.0 * np.pi * G / lam))
+
+
+def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG) -> xr.Dataset:
+    """Diffraction (and, for checks, Froude-Krylov) force per unit wave amplitude on ``body`` (a
+    Capytaine FloatingBody with the six rigid-body modes about G, at its calm-water equilibrium).
+
+    Parameters
+    ----------
+    body : capytaine.FloatingBody
+        Immersed hull with the dofs ``DOFS6`` (:func:`stabflow.dynamics.hydro.immersed_body`).
+    rho : float
+        Water density [kg/m^3].
+    omegas : array, optional
+        Wave frequencies [rad/s]; default ``N_FREQUENCIES`` equally spaced up to
+        :func:`resolved_omega`.
+    headings_deg : array
+        Wave headings [degree], 0 following, 180 head seas.
+
+    Returns
+    -------
+    xarray.Dataset over (omega, heading, dof): ``diffraction_re``/``_im`` and
+    ``froude_krylov_re``/``_im`` [N/m for forces, N for moments about G, per metre of wave
+    amplitude]; the row omega = 0 is zero (long-wave limit).
+    """
+    import capytaine as cpt
+    from capytaine.bem.airy_waves import froude_krylov_force
+
+    cpt.set_logging("ERROR")
+    w_max = resolved_omega(body)
+    if omegas is None:
+        omegas = np.linspace(w_max / N_FREQUENCIES, w_max, N_FREQUENCIES)
+    omegas = np.asarray(omegas, float)
+    headings_deg = np.asarray(headings_deg, float)
+    solver = cpt.BEMSolver()
+    xd = np.zeros((len(omegas) + 1, len(headings_deg), 6), complex)
+    fk = np.zeros_like(xd)
+    with one_blas_thread():  # the solve's rounding depends on BLAS's threads: the same in every job
+        for i, w in enumerate(omegas):
+            for j, b in enumerate(headings_deg):
+                pb = cpt.DiffractionProblem(body=body, omega=float(w), wave_direction=float(np.radians(b)), rho=rho, g=G)
+                res = solver.solve(pb)
+                f = froude_krylov_force(pb)
+                for q, d in enumerate(DOFS6):
+                    xd[i + 1, j, q] = res.forces[d]
+                    fk[i + 1, j, q] = f[d]
+    coords = {"omega": np.concatenate([[0.0], omegas]), "heading": headings_deg, "dof": DOFS6}
+    dims = ("omega", "heading", "dof")
+    ds = xr.Dataset(
+        {
+            "diffraction_re": (dims, xd.real), "diffraction_im": (dims, xd.imag),
+            "froude_krylov_re": (dims, fk.real), "froude_krylov_im": (dims, fk.imag),
+        },
+        coords=coords,
+        attrs={"omega_max": w_max, "panels": int(body.mesh.nb_faces), "rho": float(rho),
+               "convention": "Capytaine e^(-i w t); incident wave Re(a e^(i(k(x cos b + y sin b) - w t))); "
+                             "forces in earth axes, moments about G, per metre of wave amplitude"},
+    )
+    return annotate(ds)
+
+
+class Diffraction:
+    """The diffraction force of a table (:func:`diffraction_dataset`) at one heading, as time series
+    of wave records.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The table.
+    heading_deg : float
+        Wave heading [degree] of the records (interpolated linearly between the table's headings).
+    which : str
+        ``"diffraction"`` (the default) or ``"froude_krylov"`` (the check against the kernel's own
+        Froude-Krylov force).
+    """
+
+    def __init__(self, ds: xr.Dataset, heading_deg: float, which: str = "diffraction"):
+        x = ds[f"{which}_re"] + 1j * ds[f"{which}_im"]
+        h = ds["heading"].values
+        if np.any(np.abs(h - heading_deg) < 1e-9):
+            x = x.sel(heading=h[np.argmin(np.abs(h - heading_deg))])
+        elif len(h) > 1 and h[0] <= heading_deg <= h[-1]:
+            x = x.interp(heading=float(heading_deg))
+        else:
+            raise ValueError(f"heading {heading_deg} deg is not in the diffraction table's headings {list(h)}")
+        self.omega = ds["omega"].values
+        self.x = x.transpose("omega", "dof").values  # (nw, 6)
+        self.omega_max = float(self.omega[-1])
+        self.heading_deg = float(heading_deg)
+
+    def transfer(self, omega) -> np.ndarray:
+        """X (n, 6) per unit amplitude at wave frequencies ``omega`` [rad/s]: linear in frequency,
+        zero beyond the table's highest frequency (unresolved by the panels)."""
+        omega = np.asarray(omega, float)
+        out = np.empty((len(omega), 6), complex)
+        for q in range(6):
+            out[:, q] = (np.interp(omega, self.omega, self.x[:, q].real, right=0.0)
+                         + 1j * np.interp(omega, self.omega, self.x[:, q].imag, right=0.0))
+        return out
+
+    def force_table(self, amp, omega, phase, speed: float, times, dtype=np.float64) -> np.ndarray:
+        """(nt, 6) force [N] and moment about G [N m] of the components (amp [m], omega [rad/s],
+        phase [rad]) at ``times`` [s] (equally spaced) for a ship at ``speed`` [m/s] on the
+        table's heading: sum_n Re(a_n X(w_n) e^(i(e_n - w_e,n t)))."""
+        amp = np.asarray(amp, float)
+        omega = np.asarray(omega, float)
+        if not len(amp):
+            return np.zeros((len(times), 6), dtype)
+        c = amp[:, None] * self.transfer(omega) * np.exp(1j * np.asarray(phase, float))[:, None]  # (nc, 6)
+        we = encounter_frequency(omega, speed, self.heading_deg)
+        cols = [(c[None, :, q].real, c[None, :, q].imag) for q in range(6)]
+        return _time_series_table(we, times, cols, dtype)[:, 0, :]
+
+
+def generalized(X, xg: float, zg: float, h0: float, th0: float) -> np.ndarray:
+    """Generalized forces (n, 3) on heave of G, roll and pitch of Capytaine-convention complex loads
+    ``X`` (n, 6) (force, moment about G; amplitude A meaning Re(A e^(-i w t))) for the ship at rest at
+    its equilibrium (origin height h0 [m], trim th0 [rad]; G at body x ``xg``, z ``zg`` [m]), in the
+    e^(i w t) convention of :func:`stabflow.dynamics.linear.fk_excitation` (the complex conjugate)."""
+    from stabflow.dynamics import _kernels as K
+    from stabflow.dynamics.linear import _rest_parameters
+    from stabflow.dynamics.rigid_body import coordinates_from_origin, generalized_loads
+
+    p = _rest_parameters(1.0, xg, zg)
+    q = coordinates_from_origin(h0, 0.0, th0, xg, zg)
+    dofs = [K.S_Z, K.S_ROLL, K.S_PITCH]
+    return np.array([generalized_loads(p, q, x.real)[dofs] - 1j * generalized_loads(p, q, x.imag)[dofs]
+                     for x in np.atleast_2d(X)])
+
+
+def ship_diffraction(ship, hull_equilibrium, rho: float, headings_deg=tuple(HEADINGS_DEG)) -> xr.Dataset:
+    """The diffraction table of ``ship`` at its calm-water equilibrium ``hull_equilibrium`` =
+    (h0 [m], th0 [rad], lcg [m], kg [m]) and ``headings_deg``, on its BEM mesh
+    (:func:`stabflow.dynamics.hydro.bem_mesh`); kept in memory for the process (the same ship file,
+    loading and headings are not solved twice)."""
+    from stabflow.dynamics.hydro import bem_mesh, immersed_body
+
+    h0, th0, xg, zg = (float(v) for v in hull_equilibrium)
+    headings = tuple(float(b) for b in headings_deg)
+    key = (str(ship.path), ship.name, h0, th0, xg, zg, float(rho), headings)
+    if key not in _TABLES:
+        body = immersed_body(bem_mesh(ship), h0, th0, xg, zg, dofs=DOFS6)
+        ds = diffraction_dataset(body, rho, headings_deg=np.asarray(headings))
+        ds.attrs.update(ship=ship.name, lcg=xg, kg=zg, h0=h0, th0=th0)
+        _TABLES[key] = ds
+    return _TABLES[key].copy()
+
+
+#: the tables solved in this process (:func:`ship_diffraction`)
+_TABLES: dict = {}
