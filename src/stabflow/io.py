@@ -466,10 +466,12 @@ def compare_results(a: str | Path, b: str | Path) -> list[dict]:
         rows.append(dict(file=str(rel), status="equal values" if not names else "different", max_rel=worst,
                          variables=names))
     return rows
+
+
 CF_ATTRS.update({
-    "omega": ("rad/s", "wave frequency"),
-    "heading": ("degree", "wave heading, 0 following, 180 head seas"),
-    "dof": ("1", "rigid-body mode: forces Surge, Sway, Heave [N/m]; moments about G Roll, Pitch, Yaw [N m/m]"),
+    "diffraction_omega": ("rad/s", "wave frequency of the diffraction table"),
+    "diffraction_heading": ("degree", "wave heading of the diffraction table, 0 following, 180 head seas"),
+    "diffraction_mode": ("1", "rigid-body mode of the diffraction table: forces Surge, Sway, Heave [N/m]; moments about G Roll, Pitch, Yaw [N m/m]"),
     "diffraction_re": ("N/m", "real part of the diffraction force per metre of wave amplitude (moments N m/m)"),
     "diffraction_im": ("N/m", "imaginary part of the diffraction force per metre of wave amplitude (moments N m/m)"),
     "froude_krylov_re": ("N/m", "real part of the Froude-Krylov force per metre of wave amplitude (moments N m/m)"),

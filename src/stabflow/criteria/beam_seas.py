@@ -169,6 +169,8 @@ def diffraction_excitation(model, h0: float, th0: float, omega) -> np.ndarray:
     (the complex conjugate of Capytaine's e^(-i w t) amplitude)."""
     from stabflow.dynamics.diffraction import generalized
 
+    if abs(model.diffraction.heading_deg - 90.0) > 1e-9:
+        raise ValueError(f"the beam-sea model needs the diffraction force at 90 deg, not {model.diffraction.heading_deg}")
     return generalized(model.diffraction.transfer(omega), float(model.st["lcg"]), float(model.st["kg"]), h0, th0)
 
 

@@ -217,6 +217,7 @@ def parametric_roll_cases(ship, cfg: dict, lam: float, hydro: xr.Dataset | None 
     from stabflow.constants import G, KNOT
     from stabflow.dynamics import _kernels as K
     from stabflow.dynamics.derivative import run_full
+    from stabflow.statistics.ensemble import diffraction_for
     from stabflow.dynamics.model import parameters
     from stabflow.statistics.ensemble import build_model
 
@@ -247,7 +248,8 @@ def parametric_roll_cases(ship, cfg: dict, lam: float, hydro: xr.Dataset | None 
         s0 = model.s0.copy()
         s0[K.S_ROLL] = math.radians(float(cfg["phi0_deg"]))
         for a, mu in enumerate(hs):
-            m = dataclasses.replace(model, p=parameters(co, model.ship.rho, float(st["lcg"]), float(st["kg"]), float(mu)))
+            m = dataclasses.replace(model, p=parameters(co, model.ship.rho, float(st["lcg"]), float(st["kg"]), float(mu)),
+                                    diffraction=None if model.diffraction is None else diffraction_for(model, float(mu)))
             v_rel = w / k * math.cos(math.radians(mu)) - U
             ratio[a, b, :] = abs(k * v_rel) * model.roll_period / (2 * math.pi)
             for j, s in enumerate(steep):

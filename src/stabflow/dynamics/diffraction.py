@@ -18,9 +18,13 @@ c_n = a_n X(w_n) e^(i e_n): one more time series, added to the kernel's loads (m
 Approximations, stated in the README: zero-speed diffraction of each component at its own
 frequency, applied with its encounter phase (forward-speed terms of the diffraction left out, as in
 the radiation's constant coefficients); the hull at its upright calm-water equilibrium (body-linear);
-X is interpolated linearly in frequency and heading on a table, zero in the long-wave limit
+X is interpolated linearly in frequency (and heading) on a table, zero in the long-wave limit
 (w = 0) and zero beyond the table's highest frequency, where the panels no longer resolve the
-wave (eight panel edges per wave length).
+wave (``PANEL_EXTENTS_PER_WAVELENGTH`` times the largest panel's extent along the waves' direction;
+stabflow's rule, not a published one). The table's frequencies are equally spaced in wave number, by ``PHASE_STEP`` / the hull's
+half extent along the waves (the phase of X turns by about k times that extent), so that linear
+interpolation of the complex X is within about PHASE_STEP^2 / 8 of it. Capytaine solves with a lid
+on the inner waterplane (irregular frequencies removed, :func:`stabflow.dynamics.hydro.lidded_body`).
 """
 
 from __future__ import annotations
@@ -34,20 +38,48 @@ from stabflow.waves.synthesis import _time_series_table, encounter_frequency, on
 
 #: Capytaine's rigid-body modes in the kernel's load order (force, then moment about G)
 DOFS6 = ["Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw"]
-#: panel edges per shortest resolved wave length (the table's highest frequency)
-PANELS_PER_WAVELENGTH = 8.0
 #: the table's headings [degree] (0 following, 180 head): the ensemble headings' range
 HEADINGS_DEG = np.arange(0.0, 181.0, 15.0)
-#: frequencies of the table, equally spaced up to the resolved limit (w = 0 is added: X = 0)
-N_FREQUENCIES = 40
+#: phase step [rad] of the table between frequencies: dk times the hull's half extent along the waves
+PHASE_STEP = 0.4
+#: the shortest resolved wave: this many times the largest panel extent along the direction of
+#: propagation; half the heave-pitch radiation sweep's 13 largest panel radii
+#: (:data:`stabflow.dynamics.radiation.PANEL_RADII_PER_WAVELENGTH`: a compact triangle's extent is
+#: about two radii), taken along the waves because the long sliver panels of a mesh such as DTMB
+#: 5415's (up to 14 m along x, 2.5 m across) resolve beam waves far shorter than head waves
+PANEL_EXTENTS_PER_WAVELENGTH = 6.5
+#: the fewest frequencies of a table (beam seas, where the phase across the hull turns slowly)
+MIN_FREQUENCIES = 16
 
 
-def resolved_omega(body) -> float:
-    """Highest wave frequency [rad/s] the panels resolve: wave length ``PANELS_PER_WAVELENGTH``
-    mean panel edges (edge = sqrt(2 x mean face area), triangles and quadrangles alike)."""
-    edge = float(np.sqrt(2.0 * np.mean(body.mesh.faces_areas)))
-    lam = PANELS_PER_WAVELENGTH * edge
-    return float(np.sqrt(2.0 * np.pi * G / lam))
+def _extent_along(body, heading_deg: float) -> np.ndarray:
+    """Each hull panel's extent [m] along the direction of propagation of waves of ``heading_deg``."""
+    b = np.radians(heading_deg)
+    v = body.mesh.vertices
+    xi = v[:, 0] * np.cos(b) + v[:, 1] * np.sin(b)
+    f = xi[np.asarray(body.mesh.faces)]
+    return f.max(axis=1) - f.min(axis=1)
+
+
+def resolved_omega(body, headings_deg) -> float:
+    """Highest wave frequency [rad/s] the panels resolve at every one of ``headings_deg``: wave length
+    ``PANEL_EXTENTS_PER_WAVELENGTH`` times the largest panel extent along the waves."""
+    ext = max(float(_extent_along(body, h).max()) for h in np.atleast_1d(headings_deg))
+    return float(np.sqrt(2.0 * np.pi * G / (PANEL_EXTENTS_PER_WAVELENGTH * ext)))
+
+
+def table_frequencies(body, headings_deg) -> np.ndarray:
+    """Frequencies [rad/s] of the table (w = 0 excluded): equally spaced in wave number up to
+    :func:`resolved_omega`, dk = ``PHASE_STEP`` / r with r the hull's largest half extent along the
+    headings' directions of propagation, at least ``MIN_FREQUENCIES`` of them."""
+    v = body.mesh.vertices
+    r = 0.0
+    for b in np.radians(np.asarray(headings_deg, float)):
+        xi = v[:, 0] * np.cos(b) + v[:, 1] * np.sin(b)
+        r = max(r, 0.5 * float(np.ptp(xi)))
+    k_max = resolved_omega(body, headings_deg) ** 2 / G
+    n = max(MIN_FREQUENCIES, int(np.ceil(k_max * r / PHASE_STEP)))
+    return np.sqrt(G * np.linspace(k_max / n, k_max, n))
 
 
 def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG) -> xr.Dataset:
@@ -57,30 +89,27 @@ def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG
     Parameters
     ----------
     body : capytaine.FloatingBody
-        Immersed hull with the dofs ``DOFS6`` (:func:`stabflow.dynamics.hydro.immersed_body`).
+        Immersed hull with the dofs ``DOFS6`` (:func:`stabflow.dynamics.hydro.lidded_body`).
     rho : float
         Water density [kg/m^3].
     omegas : array, optional
-        Wave frequencies [rad/s]; default ``N_FREQUENCIES`` equally spaced up to
-        :func:`resolved_omega`.
+        Wave frequencies [rad/s]; default :func:`table_frequencies`.
     headings_deg : array
         Wave headings [degree], 0 following, 180 head seas.
 
     Returns
     -------
-    xarray.Dataset over (omega, heading, dof): ``diffraction_re``/``_im`` and
-    ``froude_krylov_re``/``_im`` [N/m for forces, N for moments about G, per metre of wave
+    xarray.Dataset over (diffraction_omega, diffraction_heading, diffraction_mode): ``diffraction_re``/``_im``
+    and ``froude_krylov_re``/``_im`` [N/m for forces, N for moments about G, per metre of wave
     amplitude]; the row omega = 0 is zero (long-wave limit).
     """
     import capytaine as cpt
     from capytaine.bem.airy_waves import froude_krylov_force
 
     cpt.set_logging("ERROR")
-    w_max = resolved_omega(body)
-    if omegas is None:
-        omegas = np.linspace(w_max / N_FREQUENCIES, w_max, N_FREQUENCIES)
-    omegas = np.asarray(omegas, float)
     headings_deg = np.asarray(headings_deg, float)
+    w_max = resolved_omega(body, headings_deg)
+    omegas = table_frequencies(body, headings_deg) if omegas is None else np.asarray(omegas, float)
     solver = cpt.BEMSolver()
     xd = np.zeros((len(omegas) + 1, len(headings_deg), 6), complex)
     fk = np.zeros_like(xd)
@@ -93,15 +122,17 @@ def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG
                 for q, d in enumerate(DOFS6):
                     xd[i + 1, j, q] = res.forces[d]
                     fk[i + 1, j, q] = f[d]
-    coords = {"omega": np.concatenate([[0.0], omegas]), "heading": headings_deg, "dof": DOFS6}
-    dims = ("omega", "heading", "dof")
+    coords = {"diffraction_omega": np.concatenate([[0.0], omegas]), "diffraction_heading": headings_deg,
+              "diffraction_mode": DOFS6}
+    dims = ("diffraction_omega", "diffraction_heading", "diffraction_mode")
     ds = xr.Dataset(
         {
             "diffraction_re": (dims, xd.real), "diffraction_im": (dims, xd.imag),
             "froude_krylov_re": (dims, fk.real), "froude_krylov_im": (dims, fk.imag),
         },
         coords=coords,
-        attrs={"omega_max": w_max, "panels": int(body.mesh.nb_faces), "rho": float(rho),
+        attrs={"omega_max": w_max, "panels": int(body.mesh.nb_faces),
+               "lid_panels": int(body.lid_mesh.nb_faces) if body.lid_mesh is not None else 0, "rho": float(rho),
                "convention": "Capytaine e^(-i w t); incident wave Re(a e^(i(k(x cos b + y sin b) - w t))); "
                              "forces in earth axes, moments about G, per metre of wave amplitude"},
     )
@@ -125,15 +156,15 @@ class Diffraction:
 
     def __init__(self, ds: xr.Dataset, heading_deg: float, which: str = "diffraction"):
         x = ds[f"{which}_re"] + 1j * ds[f"{which}_im"]
-        h = ds["heading"].values
+        h = ds["diffraction_heading"].values
         if np.any(np.abs(h - heading_deg) < 1e-9):
-            x = x.sel(heading=h[np.argmin(np.abs(h - heading_deg))])
+            x = x.sel(diffraction_heading=h[np.argmin(np.abs(h - heading_deg))])
         elif len(h) > 1 and h[0] <= heading_deg <= h[-1]:
-            x = x.interp(heading=float(heading_deg))
+            x = x.interp(diffraction_heading=float(heading_deg))
         else:
             raise ValueError(f"heading {heading_deg} deg is not in the diffraction table's headings {list(h)}")
-        self.omega = ds["omega"].values
-        self.x = x.transpose("omega", "dof").values  # (nw, 6)
+        self.omega = ds["diffraction_omega"].values
+        self.x = x.transpose("diffraction_omega", "diffraction_mode").values  # (nw, 6)
         self.omega_max = float(self.omega[-1])
         self.heading_deg = float(heading_deg)
 
@@ -147,18 +178,18 @@ class Diffraction:
                          + 1j * np.interp(omega, self.omega, self.x[:, q].imag, right=0.0))
         return out
 
-    def force_table(self, amp, omega, phase, speed: float, times, dtype=np.float64) -> np.ndarray:
-        """(nt, 6) force [N] and moment about G [N m] of the components (amp [m], omega [rad/s],
-        phase [rad]) at ``times`` [s] (equally spaced) for a ship at ``speed`` [m/s] on the
-        table's heading: sum_n Re(a_n X(w_n) e^(i(e_n - w_e,n t)))."""
+    def force_table(self, amp, omega, phase, speed: float, times) -> np.ndarray:
+        """(nt, 6) float64 force [N] and moment about G [N m] of the components (amp [m], omega
+        [rad/s], phase [rad]) at ``times`` [s] (equally spaced) for a ship at ``speed`` [m/s] on the
+        table's heading: sum_n Re(a_n X(w_n) e^(i(e_n - w_e,n t))) (the kernel's ``ftab``)."""
         amp = np.asarray(amp, float)
         omega = np.asarray(omega, float)
         if not len(amp):
-            return np.zeros((len(times), 6), dtype)
+            return np.zeros((len(times), 6))
         c = amp[:, None] * self.transfer(omega) * np.exp(1j * np.asarray(phase, float))[:, None]  # (nc, 6)
         we = encounter_frequency(omega, speed, self.heading_deg)
         cols = [(c[None, :, q].real, c[None, :, q].imag) for q in range(6)]
-        return _time_series_table(we, times, cols, dtype)[:, 0, :]
+        return _time_series_table(we, times, cols, np.float64)[:, 0, :]
 
 
 def generalized(X, xg: float, zg: float, h0: float, th0: float) -> np.ndarray:
@@ -182,13 +213,13 @@ def ship_diffraction(ship, hull_equilibrium, rho: float, headings_deg=tuple(HEAD
     (h0 [m], th0 [rad], lcg [m], kg [m]) and ``headings_deg``, on its BEM mesh
     (:func:`stabflow.dynamics.hydro.bem_mesh`); kept in memory for the process (the same ship file,
     loading and headings are not solved twice)."""
-    from stabflow.dynamics.hydro import bem_mesh, immersed_body
+    from stabflow.dynamics.hydro import bem_mesh, lidded_body
 
     h0, th0, xg, zg = (float(v) for v in hull_equilibrium)
     headings = tuple(float(b) for b in headings_deg)
     key = (str(ship.path), ship.name, h0, th0, xg, zg, float(rho), headings)
     if key not in _TABLES:
-        body = immersed_body(bem_mesh(ship), h0, th0, xg, zg, dofs=DOFS6)
+        body = lidded_body(bem_mesh(ship), h0, th0, xg, zg, DOFS6)
         ds = diffraction_dataset(body, rho, headings_deg=np.asarray(headings))
         ds.attrs.update(ship=ship.name, lcg=xg, kg=zg, h0=h0, th0=th0)
         _TABLES[key] = ds

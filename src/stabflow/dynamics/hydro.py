@@ -56,6 +56,22 @@ def immersed_body(mesh, h0, th0, xg, zg, dofs=DOFS):
     return body.immersed_part().with_only_dofs(list(dofs))
 
 
+def lidded_body(mesh, h0, th0, xg, zg, dofs):
+    """Capytaine FloatingBody of the immersed hull at its equilibrium (heave h0 [m], trim th0 [rad])
+    with a lid on the inner waterplane (irregular-frequency removal) and the rigid-body modes ``dofs``
+    about G (``xg``, ``zg`` [m], body axes): the body of the frequency sweeps (the heave-pitch
+    radiation, the diffraction force)."""
+    import capytaine as cpt
+
+    cpt.set_logging("ERROR")
+    ve = earth_vertices(np.asarray(mesh.vertices, float), 0.0, th0, h0)
+    ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
+    hull = cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)).immersed_part()
+    lid = hull.generate_lid(z=-1e-3 * float(np.ptp(hull.vertices[:, 2])))
+    body = cpt.FloatingBody(mesh=hull, lid_mesh=lid, dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge)))
+    return body.with_only_dofs(list(dofs))
+
+
 def radiation(body, omega, rho, solver=None):
     """(A, B): 3x3 added mass and radiation damping for (heave, roll, pitch) at ``omega``."""
     import capytaine as cpt

@@ -94,15 +94,10 @@ def bem_radiation(mesh, h0: float, th0: float, xg: float, zg: float, rho: float,
     N s, N m s]."""
     import capytaine as cpt
 
-    from stabflow.geometry.frames import earth_vertices
+    from stabflow.dynamics.hydro import lidded_body
 
-    cpt.set_logging("ERROR")
-    ve = earth_vertices(np.asarray(mesh.vertices, float), 0.0, th0, h0)
-    ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
-    hull = cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)).immersed_part()
-    lid = hull.generate_lid(z=-1e-3 * float(np.ptp(hull.vertices[:, 2])))
-    body = cpt.FloatingBody(mesh=hull, lid_mesh=lid, dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge)))
-    body = body.with_only_dofs(list(HEAVE_PITCH))
+    body = lidded_body(mesh, h0, th0, xg, zg, HEAVE_PITCH)
+    hull, lid = body.mesh, body.lid_mesh
     from tqdm import tqdm
 
     from stabflow.waves.synthesis import one_blas_thread

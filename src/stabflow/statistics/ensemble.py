@@ -143,16 +143,17 @@ def build_model(ship: Ship, cond: dict, hydro: xr.Dataset | None = None, radiati
     return model
 
 
-def diffraction_for(model: Model):
-    """The diffraction force of ``model``'s ship at its condition's heading and loading
-    (:func:`stabflow.dynamics.diffraction.ship_diffraction` at that one heading: about 40 BEM solves,
-    seconds; kept for the process's other conditions of the same ship, loading and heading)."""
+def diffraction_for(model: Model, heading_deg: float | None = None):
+    """The diffraction force of ``model``'s ship at its loading and the condition's heading (or
+    ``heading_deg`` [degree]) (:func:`stabflow.dynamics.diffraction.ship_diffraction` at that one
+    heading: tens of BEM solves, 10-60 s; kept for the process's other conditions of the same ship,
+    loading and heading)."""
     from stabflow.dynamics.diffraction import Diffraction, ship_diffraction
 
     lcg, kg = float(model.st["lcg"]), float(model.st["kg"])
     rest = model.s0
     h0 = _origin_height(rest[S_Z], 0.0, rest[S_PITCH], lcg, kg)
-    heading = float(model.cond["heading_deg"])
+    heading = float(model.cond["heading_deg"] if heading_deg is None else heading_deg)
     table = ship_diffraction(model.ship, (h0, float(rest[S_PITCH]), lcg, kg), model.ship.rho, (heading,))
     return Diffraction(table, heading)
 

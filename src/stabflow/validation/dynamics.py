@@ -141,7 +141,7 @@ The diffraction option's excitation (2 rows, independent; tolerance 4 %)
     dtmb5415 +2.1 %, trawler +1.9 % (FK alone +2.5, +2.3 %), barge -7.9 % (FK alone +1.3 %: its
     diffraction moment about G, 1.17 of the FK, nearly cancels it); heave +10.7 % (dtmb5415),
     +18.5 % (trawler), +11.7 % (barge): the planar waterline's FK excess in short beam waves (FK
-    alone +18, +39, +12 %). SKIPPED without a BEM mesh (Wigley; the DTC's is over 10,000
+    alone +18, +39, +12 %). SKIPPED without a BEM mesh (Wigley; the DTC's is over the BEM's 20,000
     triangles) or where the panels do not resolve the wave at 2 w_phi.
 Long head waves (3 rows, consistency)
     lambda = 20 L, H/lambda = 1/500, head seas (:func:`stabflow.dynamics.rao.rao_sweep`): heave / a
@@ -526,13 +526,13 @@ def roll_excitation_with_decay(sec: Sections, st: xr.Dataset, co: Coefficients, 
 
 
 def bem_hull(ship: Ship):
-    """The ship's BEM mesh (:func:`stabflow.dynamics.hydro.bem_mesh`, at most ``MAX_PRESSURE_FACES``
-    triangles), or NotApplicable with the reason."""
+    """The ship's BEM mesh (:func:`stabflow.dynamics.hydro.bem_mesh`, the records' own limit on its
+    size), or NotApplicable with the reason."""
     from stabflow import StabflowError
     from stabflow.dynamics.hydro import bem_mesh
 
     try:
-        return bem_mesh(ship, max_faces=MAX_PRESSURE_FACES)
+        return bem_mesh(ship)
     except StabflowError as exc:
         raise NotApplicable(f"no BEM: {exc}") from exc
 
@@ -541,28 +541,29 @@ def hybrid_excitation(mesh, sec: Sections, st: xr.Dataset, co: Coefficients, rho
                       th0: float) -> dict:
     """The hybrid model's wave excitation in beam waves (ship held at its calm-water equilibrium): the
     kernel's Froude-Krylov loads with the pressure decay plus Capytaine's diffraction force
-    (:mod:`stabflow.dynamics.diffraction`, the option ``dynamics.diffraction: capytaine``) against
-    Capytaine's Froude-Krylov plus diffraction force (panels), as generalized forces, roll at the roll
-    frequency w_phi and heave at 2 w_phi (the heave-roll resonance of the DSA's beam seas), on the
-    BEM ``mesh`` (:func:`bem_hull`).
+    (:mod:`stabflow.dynamics.diffraction`, the option ``dynamics.diffraction: capytaine``, solved at
+    these two frequencies: the records interpolate the same force on their table) against
+    Capytaine's Froude-Krylov plus diffraction force (panels, lid), as generalized forces, roll at
+    the roll frequency w_phi and heave at 2 w_phi (the heave-roll resonance of the DSA's beam seas),
+    on the BEM ``mesh`` (:func:`bem_hull`).
 
     Returns ``roll`` and ``heave`` deviations [%] of the magnitudes, ``fk_roll`` and ``fk_heave`` [%]
     (the kernel's FK alone against Capytaine's FK), ``diffraction_roll`` and ``diffraction_heave``
     (|diffraction| / |FK| of Capytaine) and the ``frequencies`` [rad/s]. Raises NotApplicable for
     hulls whose panels do not resolve the wave at 2 w_phi."""
     from stabflow.dynamics.diffraction import DOFS6, diffraction_dataset, generalized, resolved_omega
-    from stabflow.dynamics.hydro import immersed_body
+    from stabflow.dynamics.hydro import lidded_body
     from stabflow.dynamics.model import section_decay
 
     lcg, kg = float(st["lcg"]), float(st["kg"])
-    body = immersed_body(mesh, h0, th0, lcg, kg, dofs=DOFS6)
+    body = lidded_body(mesh, h0, th0, lcg, kg, DOFS6)
     wn = co.natural_frequency("roll")
     ws = np.array([wn, 2 * wn])
-    if ws[-1] > resolved_omega(body):
-        raise NotApplicable(f"the panels resolve waves up to {resolved_omega(body):.2f} rad/s, not 2 w_phi = "
+    if ws[-1] > resolved_omega(body, BEAM):
+        raise NotApplicable(f"the panels resolve beam waves up to {resolved_omega(body, BEAM):.2f} rad/s, not 2 w_phi = "
                             f"{ws[-1]:.2f} rad/s")
     table = diffraction_dataset(body, rho, omegas=ws, headings_deg=[BEAM])
-    cap = table.sel(heading=BEAM).isel(omega=slice(1, None))
+    cap = table.sel(diffraction_heading=BEAM).isel(diffraction_omega=slice(1, None))
     D = generalized((cap["diffraction_re"] + 1j * cap["diffraction_im"]).values, lcg, kg, h0, th0)
     F = generalized((cap["froude_krylov_re"] + 1j * cap["froude_krylov_im"]).values, lcg, kg, h0, th0)
     dec = section_decay(sec, h0, th0)
