@@ -476,4 +476,8 @@ CF_ATTRS.update({
     "diffraction_im": ("N/m", "imaginary part of the diffraction force per metre of wave amplitude (moments N m/m)"),
     "froude_krylov_re": ("N/m", "real part of the Froude-Krylov force per metre of wave amplitude (moments N m/m)"),
     "froude_krylov_im": ("N/m", "imaginary part of the Froude-Krylov force per metre of wave amplitude (moments N m/m)"),
+    "sway_reaction_re": ("N/m", "real part of the radiation force of the free sway driven by the wave's sway force, per "
+                                "metre of wave amplitude (moments N m/m)"),
+    "sway_reaction_im": ("N/m", "imaginary part of the radiation force of the free sway driven by the wave's sway force, "
+                                "per metre of wave amplitude (moments N m/m)"),
 })

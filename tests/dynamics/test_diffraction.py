@@ -82,7 +82,7 @@ def test_long_wave_diffraction_is_added_mass_times_fluid_acceleration(barge_body
     import capytaine as cpt
 
     w = float(barge_table["diffraction_omega"].values[1])
-    x = Diffraction(barge_table, 90.0).transfer([w])[0]
+    x = Diffraction(barge_table, 90.0, which="diffraction").transfer([w])[0]
     res = cpt.BEMSolver().solve(cpt.RadiationProblem(body=barge_body, radiating_dof="Sway", omega=w, rho=1025.0, g=G))
     for q, name in ((1, "Sway"), (3, "Roll")):
         expected = w**2 * res.added_mass[name]
@@ -91,6 +91,10 @@ def test_long_wave_diffraction_is_added_mass_times_fluid_acceleration(barge_body
     # origin, the particle's horizontal acceleration is Re(-i w^2 e^(-i w t)) (waves along +y), so
     # X_sway = -i w^2 A22 to the same 2 %
     assert abs(x[1] - (-1j) * w**2 * res.added_mass["Sway"]) < 0.02 * abs(x[1])
+    # with the sway free (the force the sway-held records take), the sway's radiation reaction takes
+    # the diffraction's roll moment away: what is left is of the order of k T (below 5 %)
+    free = Diffraction(barge_table, 90.0).transfer([w])[0]
+    assert abs(free[3]) < 0.05 * abs(x[3])
 
 
 def test_transfer_is_zero_at_rest_and_beyond_the_resolved_frequency(barge_table):
@@ -155,9 +159,8 @@ def test_beam_sea_linear_model_carries_the_same_force(barge_table, monkeypatch):
     """The linear beam-sea model (criteria.beam_seas, the dead-ship and acceleration checks) adds the
     same diffraction force as the time domain: small regular beam waves, roll amplitude of the time
     domain within 1 % of the linear model's at 1.5 and 2 times the roll frequency. At the roll
-    resonance the force matters: the barge's G is 1 m above the waterline, and the diffraction's
-    sway force, acting low on the hull, takes most of the FK roll moment about G away (the linear
-    roll there below half of the model's without it)."""
+    resonance the force matters: with the free sway's reaction the barge's linear roll there is
+    0.74 of the model's without it (0.17 with the bare diffraction force of a sway-held ship)."""
     from stabflow.criteria.beam_seas import beam_sea_model
     from stabflow.dynamics import diffraction as D
     from stabflow.dynamics.model import simulate
@@ -184,7 +187,8 @@ def test_beam_sea_linear_model_carries_the_same_force(barge_table, monkeypatch):
         amp, _ = first_harmonic(t[sel], np.radians(ds["roll"].values[sel]), w)
         lin = np.interp(w, bsm.omega, np.abs(bsm.roll_rao()))
         assert amp / a == pytest.approx(lin, rel=0.01), r
-    assert np.interp(wn, bsm.omega, np.abs(bsm.roll_rao())) < 0.5 * np.interp(wn, plain.omega, np.abs(plain.roll_rao()))
+    ratio = np.interp(wn, bsm.omega, np.abs(bsm.roll_rao())) / np.interp(wn, plain.omega, np.abs(plain.roll_rao()))
+    assert 0.6 < ratio < 0.9
 
 
 def test_ensemble_paths_carry_the_force(barge_table, monkeypatch):

@@ -78,14 +78,14 @@ def wigley():
 
 
 def test_barge_every_row_present_and_passes(barge_rows):
-    """Every row but four passes; the exceptions are the planar waterline's cost in GM variation and in
-    heave in short beam waves, and the diffraction option's two excitation rows (below)."""
+    """Every row but three passes; the exceptions are the planar waterline's cost in GM variation and in
+    heave in short beam waves, twice (the second with the diffraction option, below)."""
     assert [(r.check, r.kind) for r in barge_rows.values()] == EXPECTED
     for r in barge_rows.values():
         if r.check in IKEDA_ROWS:  # the barge's roll damping is the config's
             assert r.status == "SKIPPED" and "dynamics.roll_damping" in r.reason
             continue
-        if r.check in (GM_EXACT_VARIATION, BEAM_ROW, *HYBRID_ROWS):
+        if r.check in (GM_EXACT_VARIATION, BEAM_ROW, HYBRID_ROWS[1]):
             continue
         assert r.status == "PASS", (r.check, r.value, r.criterion, r.reason)
         assert r.reason == ""
@@ -130,15 +130,14 @@ def test_barge_every_row_present_and_passes(barge_rows):
         assert abs(rows[n].value) < 1.0, n
     for n in (CURVED_ROWS[0], CURVED_ROWS[2]):
         assert abs(rows[n].value) < 1.0, n
-    # the diffraction option's beam-sea excitation against Capytaine's FK + diffraction: the kernel's FK
-    # alone is +1.3 % (roll, lambda 310 m) and +11.8 % (heave, lambda 78 m: the planar waterline) off
-    # Capytaine's; in roll the diffraction moment about G (1.17 of the FK, G above the waterline)
-    # nearly cancels the FK moment, and the total misses by 7.9 %
+    # the diffraction option's beam-sea excitation against Capytaine's FK + diffraction (with the free
+    # sway's reaction): the kernel's FK alone is +1.3 % (roll, lambda 310 m) and +11.8 % (heave,
+    # lambda 78 m: the planar waterline) off Capytaine's; measured +1.8 % and +11.7 %
     hroll, hheave = (rows[n] for n in HYBRID_ROWS)
-    assert hroll.status == "FAIL" and -10.0 < hroll.value < -6.0 and "alone against Capytaine's +1.3 %" in hroll.reference
-    assert hheave.status == "FAIL" and 10.0 < hheave.value < 14.0 and "|diffraction| / |FK| 0.77" in hheave.reference
+    assert hroll.status == "PASS" and 1.0 < hroll.value < 3.0 and "alone against Capytaine's +1.3 %" in hroll.reference
+    assert hheave.status == "FAIL" and 10.0 < hheave.value < 14.0 and "/ |FK| 0.77" in hheave.reference
     ds = checks_dataset("barge", "dynamics", list(rows.values()))
-    assert list(ds["name"].values[ds["status"].values == "FAIL"]) == [GM_EXACT_VARIATION, BEAM_ROW] + HYBRID_ROWS
+    assert list(ds["name"].values[ds["status"].values == "FAIL"]) == [GM_EXACT_VARIATION, BEAM_ROW, HYBRID_ROWS[1]]
     assert ds.sizes["check"] == len(EXPECTED)
 
 

@@ -15,6 +15,18 @@ Re(e^(i(k (x cos beta + y sin beta) - w t))), the same x forward, y to port, z u
 origin as the stations). So F(t) = sum_n [Re c_n cos(w_e,n t) + Im c_n sin(w_e,n t)] with
 c_n = a_n X(w_n) e^(i e_n): one more time series, added to the kernel's loads (moments about G).
 
+The sway the 3-DOF model holds. With sway free, the wave's sway force (FK + diffraction) sways the
+ship, and that sway's radiation force on the other modes, (w^2 A_j2 + i w B_j2) y with
+y = F_2 / (-w^2 (m + A_22) - i w B_22), takes most of the diffraction's roll moment about G away:
+in long waves F_2 = (m + A_22) times the fluid's acceleration and the diffraction's roll moment is
+A_42 times it (G. I. Taylor's limit), so the two cancel and the roll excitation is the FK's alone.
+A sway-held model given the bare diffraction force would keep the A_42 term (DTMB 5415 in beam seas:
+roll excitation 1.16-1.20 of the FK's at and below the roll frequency, against 0.88-0.99 with the
+sway free). The records therefore take the diffraction force plus the free sway's radiation
+reaction (``which="sway_free"``, the table's ``sway_reaction``), from Capytaine's sway radiation
+problem at each frequency. Left out: the sway that roll itself drives (A_24), which lowers the
+effective roll inertia by A_42 A_24 / (m + A_22).
+
 Approximations, stated in the README: zero-speed diffraction of each component at its own
 frequency, applied with its encounter phase (forward-speed terms of the diffraction left out, as in
 the radiation's constant coefficients); the hull at its upright calm-water equilibrium (body-linear);
@@ -101,7 +113,10 @@ def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG
     -------
     xarray.Dataset over (diffraction_omega, diffraction_heading, diffraction_mode): ``diffraction_re``/``_im``
     and ``froude_krylov_re``/``_im`` [N/m for forces, N for moments about G, per metre of wave
-    amplitude]; the row omega = 0 is zero (long-wave limit).
+    amplitude]; ``sway_reaction_re``/``_im``: the radiation force of the sway the wave's sway force
+    (Capytaine's FK + diffraction) drives on a free ship, (w^2 A_j2 + i w B_j2) F_2 / (-w^2 (m + A_22)
+    - i w B_22), m = rho times the immersed volume (module docstring); the row omega = 0 is zero
+    (long-wave limit).
     """
     import capytaine as cpt
     from capytaine.bem.airy_waves import froude_krylov_force
@@ -113,8 +128,14 @@ def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG
     solver = cpt.BEMSolver()
     xd = np.zeros((len(omegas) + 1, len(headings_deg), 6), complex)
     fk = np.zeros_like(xd)
+    sway = np.zeros_like(xd)
+    mass = rho * float(body.mesh.volume)
     with one_blas_thread():  # the solve's rounding depends on BLAS's threads: the same in every job
         for i, w in enumerate(omegas):
+            rad = solver.solve(cpt.RadiationProblem(body=body, radiating_dof="Sway", omega=float(w), rho=rho, g=G))
+            # radiation force on mode q per unit sway (Capytaine's e^(-i w t)): w^2 A_q2 + i w B_q2
+            react = np.array([w**2 * rad.added_mass[d] + 1j * w * rad.radiation_damping[d] for d in DOFS6])
+            z22 = -w**2 * (mass + rad.added_mass["Sway"]) - 1j * w * rad.radiation_damping["Sway"]
             for j, b in enumerate(headings_deg):
                 pb = cpt.DiffractionProblem(body=body, omega=float(w), wave_direction=float(np.radians(b)), rho=rho, g=G)
                 res = solver.solve(pb)
@@ -122,6 +143,7 @@ def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG
                 for q, d in enumerate(DOFS6):
                     xd[i + 1, j, q] = res.forces[d]
                     fk[i + 1, j, q] = f[d]
+                sway[i + 1, j] = react * (fk[i + 1, j, 1] + xd[i + 1, j, 1]) / z22
     coords = {"diffraction_omega": np.concatenate([[0.0], omegas]), "diffraction_heading": headings_deg,
               "diffraction_mode": DOFS6}
     dims = ("diffraction_omega", "diffraction_heading", "diffraction_mode")
@@ -129,9 +151,10 @@ def diffraction_dataset(body, rho: float, omegas=None, headings_deg=HEADINGS_DEG
         {
             "diffraction_re": (dims, xd.real), "diffraction_im": (dims, xd.imag),
             "froude_krylov_re": (dims, fk.real), "froude_krylov_im": (dims, fk.imag),
+            "sway_reaction_re": (dims, sway.real), "sway_reaction_im": (dims, sway.imag),
         },
         coords=coords,
-        attrs={"omega_max": w_max, "panels": int(body.mesh.nb_faces),
+        attrs={"omega_max": w_max, "panels": int(body.mesh.nb_faces), "mass": mass,
                "lid_panels": int(body.lid_mesh.nb_faces) if body.lid_mesh is not None else 0, "rho": float(rho),
                "convention": "Capytaine e^(-i w t); incident wave Re(a e^(i(k(x cos b + y sin b) - w t))); "
                              "forces in earth axes, moments about G, per metre of wave amplitude"},
@@ -150,12 +173,16 @@ class Diffraction:
     heading_deg : float
         Wave heading [degree] of the records (interpolated linearly between the table's headings).
     which : str
-        ``"diffraction"`` (the default) or ``"froude_krylov"`` (the check against the kernel's own
-        Froude-Krylov force).
+        ``"sway_free"`` (the default: the diffraction force plus the free sway's radiation reaction,
+        the force the sway-held 3-DOF records take, module docstring), ``"diffraction"`` (the bare
+        diffraction force) or ``"froude_krylov"`` (the check against the kernel's own FK force).
     """
 
-    def __init__(self, ds: xr.Dataset, heading_deg: float, which: str = "diffraction"):
-        x = ds[f"{which}_re"] + 1j * ds[f"{which}_im"]
+    def __init__(self, ds: xr.Dataset, heading_deg: float, which: str = "sway_free"):
+        if which == "sway_free":
+            x = ds["diffraction_re"] + ds["sway_reaction_re"] + 1j * (ds["diffraction_im"] + ds["sway_reaction_im"])
+        else:
+            x = ds[f"{which}_re"] + 1j * ds[f"{which}_im"]
         h = ds["diffraction_heading"].values
         if np.any(np.abs(h - heading_deg) < 1e-9):
             x = x.sel(diffraction_heading=h[np.argmin(np.abs(h - heading_deg))])

@@ -134,14 +134,13 @@ Heel's part of that roll moment (1 row, independent; tolerance 3 %)
 The diffraction option's excitation (2 rows, independent; tolerance 4 %)
     Beam waves, ship held at its calm-water equilibrium, zero speed: the generalized roll force at
     the roll frequency and heave force at twice it of the hybrid model (``dynamics.diffraction:
-    capytaine``: the kernel's FK with the pressure decay plus Capytaine's diffraction force, as the
-    3-DOF records use them) against Capytaine's FK plus diffraction on the panels
-    (:func:`hybrid_excitation`; every ship with a BEM mesh, whatever its option). The reference
-    text gives the kernel's FK alone against Capytaine's and |diffraction| / |FK|. Measured: roll
-    dtmb5415 +2.1 %, trawler +1.9 % (FK alone +2.5, +2.3 %), barge -7.9 % (FK alone +1.3 %: its
-    diffraction moment about G, 1.17 of the FK, nearly cancels it); heave +10.7 % (dtmb5415),
-    +18.5 % (trawler), +11.7 % (barge): the planar waterline's FK excess in short beam waves (FK
-    alone +18, +39, +12 %). SKIPPED without a BEM mesh (Wigley; the DTC's is over the BEM's 20,000
+    capytaine``: the kernel's FK with the pressure decay plus Capytaine's diffraction force with the
+    free sway's radiation reaction, as the 3-DOF records use them) against Capytaine's FK plus the
+    same on the panels (:func:`hybrid_excitation`; every ship with a BEM mesh, whatever its
+    option). The reference text gives the kernel's FK alone against Capytaine's and |diffraction +
+    sway reaction| / |FK|. Measured: roll barge +1.8 %, dtmb5415 +2.8 %, trawler +2.5 % (FK alone
+    +1.3, +2.5, +2.3 %); heave +11.7 % (barge), +10.7 % (dtmb5415), +18.6 % (trawler): the planar
+    waterline's FK excess in short beam waves (FK alone +12, +18, +39 %). SKIPPED without a BEM mesh (Wigley; the DTC's is over the BEM's 20,000
     triangles) or where the panels do not resolve the wave at 2 w_phi.
 Long head waves (3 rows, consistency)
     lambda = 20 L, H/lambda = 1/500, head seas (:func:`stabflow.dynamics.rao.rao_sweep`): heave / a
@@ -540,7 +539,8 @@ def bem_hull(ship: Ship):
 def hybrid_excitation(mesh, sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h0: float,
                       th0: float) -> dict:
     """The hybrid model's wave excitation in beam waves (ship held at its calm-water equilibrium): the
-    kernel's Froude-Krylov loads with the pressure decay plus Capytaine's diffraction force
+    kernel's Froude-Krylov loads with the pressure decay plus Capytaine's diffraction force with the
+    free sway's radiation reaction (``Diffraction(which="sway_free")``)
     (:mod:`stabflow.dynamics.diffraction`, the option ``dynamics.diffraction: capytaine``, solved at
     these two frequencies: the records interpolate the same force on their table) against
     Capytaine's Froude-Krylov plus diffraction force (panels, lid), as generalized forces, roll at
@@ -549,7 +549,7 @@ def hybrid_excitation(mesh, sec: Sections, st: xr.Dataset, co: Coefficients, rho
 
     Returns ``roll`` and ``heave`` deviations [%] of the magnitudes, ``fk_roll`` and ``fk_heave`` [%]
     (the kernel's FK alone against Capytaine's FK), ``diffraction_roll`` and ``diffraction_heave``
-    (|diffraction| / |FK| of Capytaine) and the ``frequencies`` [rad/s]. Raises NotApplicable for
+    (|diffraction + sway reaction| / |FK| of Capytaine) and the ``frequencies`` [rad/s]. Raises NotApplicable for
     hulls whose panels do not resolve the wave at 2 w_phi."""
     from stabflow.dynamics.diffraction import DOFS6, diffraction_dataset, generalized, resolved_omega
     from stabflow.dynamics.hydro import lidded_body
@@ -564,7 +564,8 @@ def hybrid_excitation(mesh, sec: Sections, st: xr.Dataset, co: Coefficients, rho
                             f"{ws[-1]:.2f} rad/s")
     table = diffraction_dataset(body, rho, omegas=ws, headings_deg=[BEAM])
     cap = table.sel(diffraction_heading=BEAM).isel(diffraction_omega=slice(1, None))
-    D = generalized((cap["diffraction_re"] + 1j * cap["diffraction_im"]).values, lcg, kg, h0, th0)
+    D = generalized((cap["diffraction_re"] + cap["sway_reaction_re"]
+                     + 1j * (cap["diffraction_im"] + cap["sway_reaction_im"])).values, lcg, kg, h0, th0)
     F = generalized((cap["froude_krylov_re"] + 1j * cap["froude_krylov_im"]).values, lcg, kg, h0, th0)
     dec = section_decay(sec, h0, th0)
     out = {"frequencies": ws}
