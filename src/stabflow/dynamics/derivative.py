@@ -303,18 +303,16 @@ def run_full(model, waves, heading_deg: float, duration: float, dt: float, s0=No
     with the model's diffraction force (``model.diffraction``, whose heading must be ``heading_deg``)
     where it has one."""
     from stabflow.dynamics._kernels import _simulate
-    from stabflow.statistics.ensemble import force_table
+    from stabflow.dynamics.diffraction import ftab
 
     nsteps = int(round(duration / dt))
     t_half = np.arange(2 * nsteps + 1) * 0.5 * dt
     wtab = station_wave_table(*waves, model.sec.x, heading_deg, model.speed, t_half, model.decay)
-    if model.diffraction is not None and abs(model.diffraction.heading_deg - heading_deg) > 1e-9:
-        raise ValueError(f"the model's diffraction force is for {model.diffraction.heading_deg} deg, the waves "
-                         f"come from {heading_deg} deg")
     out = np.empty((nsteps + 1, K.N_STATE))
     s = model.s0 if s0 is None else np.asarray(s0, float)
-    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab, force_table(model, waves, t_half), dt, 0,
-                     nsteps, s, np.radians(90.0), out, np.empty((0, 6)))
+    last = _simulate(*kernel_args(model.sec, model.tables), model.p, wtab,
+                     ftab(model.diffraction, waves, model.speed, heading_deg, t_half), dt, 0, nsteps, s,
+                     np.radians(90.0), out, np.empty((0, 6)))
     return out, last
 
 

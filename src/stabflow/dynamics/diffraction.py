@@ -64,12 +64,16 @@ PANEL_EXTENTS_PER_WAVELENGTH = 6.5
 MIN_FREQUENCIES = 16
 
 
-def _extent_along(body, heading_deg: float) -> np.ndarray:
-    """Each hull panel's extent [m] along the direction of propagation of waves of ``heading_deg``."""
+def _along(body, heading_deg: float) -> np.ndarray:
+    """The hull vertices' coordinate [m] along the direction of propagation of waves of ``heading_deg``."""
     b = np.radians(heading_deg)
     v = body.mesh.vertices
-    xi = v[:, 0] * np.cos(b) + v[:, 1] * np.sin(b)
-    f = xi[np.asarray(body.mesh.faces)]
+    return v[:, 0] * np.cos(b) + v[:, 1] * np.sin(b)
+
+
+def _extent_along(body, heading_deg: float) -> np.ndarray:
+    """Each hull panel's extent [m] along the direction of propagation of waves of ``heading_deg``."""
+    f = _along(body, heading_deg)[np.asarray(body.mesh.faces)]
     return f.max(axis=1) - f.min(axis=1)
 
 
@@ -84,11 +88,7 @@ def table_frequencies(body, headings_deg) -> np.ndarray:
     """Frequencies [rad/s] of the table (w = 0 excluded): equally spaced in wave number up to
     :func:`resolved_omega`, dk = ``PHASE_STEP`` / r with r the hull's largest half extent along the
     headings' directions of propagation, at least ``MIN_FREQUENCIES`` of them."""
-    v = body.mesh.vertices
-    r = 0.0
-    for b in np.radians(np.asarray(headings_deg, float)):
-        xi = v[:, 0] * np.cos(b) + v[:, 1] * np.sin(b)
-        r = max(r, 0.5 * float(np.ptp(xi)))
+    r = max(0.5 * float(np.ptp(_along(body, h))) for h in np.atleast_1d(headings_deg))
     k_max = resolved_omega(body, headings_deg) ** 2 / G
     n = max(MIN_FREQUENCIES, int(np.ceil(k_max * r / PHASE_STEP)))
     return np.sqrt(G * np.linspace(k_max / n, k_max, n))
@@ -217,6 +217,18 @@ class Diffraction:
         we = encounter_frequency(omega, speed, self.heading_deg)
         cols = [(c[None, :, q].real, c[None, :, q].imag) for q in range(6)]
         return _time_series_table(we, times, cols, np.float64)[:, 0, :]
+
+
+def ftab(diffraction: "Diffraction | None", components, speed: float, heading_deg: float, times) -> np.ndarray:
+    """The kernel's ``ftab`` for the wave ``components`` (amp, omega, phase) met at ``heading_deg``
+    [degree] and ``speed`` [m/s] at ``times`` [s]: ``diffraction``'s force table, or a (0, 6) array
+    without one (None). Raises ValueError when the force is for another heading."""
+    if diffraction is None:
+        return np.empty((0, 6))
+    if abs(diffraction.heading_deg - heading_deg) > 1e-9:
+        raise ValueError(f"the diffraction force is for {diffraction.heading_deg} deg, the waves come from "
+                         f"{heading_deg} deg")
+    return diffraction.force_table(*components, speed, times)
 
 
 def generalized(X, xg: float, zg: float, h0: float, th0: float) -> np.ndarray:

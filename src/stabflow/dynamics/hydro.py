@@ -43,17 +43,23 @@ def bem_mesh(ship, max_faces: int = 20000):
     return m
 
 
-def immersed_body(mesh, h0, th0, xg, zg, dofs=DOFS):
-    """Capytaine FloatingBody of the immersed hull with the rigid-body modes ``dofs`` (default heave,
-    roll, pitch) about G."""
+def _earth_hull(mesh, h0, th0, xg, zg):
+    """(Capytaine Mesh of the whole hull, rigid-body dofs about G) in the earth frame at the
+    equilibrium (heave h0 [m], trim th0 [rad]; G at body x ``xg``, z ``zg`` [m])."""
     import capytaine as cpt
 
     cpt.set_logging("ERROR")
     ve = earth_vertices(np.asarray(mesh.vertices, float), 0.0, th0, h0)
     ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
-    body = cpt.FloatingBody(mesh=cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)),
-                            dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge)))
-    return body.immersed_part().with_only_dofs(list(dofs))
+    return cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)), cpt.rigid_body_dofs(rotation_center=tuple(ge))
+
+
+def immersed_body(mesh, h0, th0, xg, zg):
+    """Capytaine FloatingBody of the immersed hull with heave/roll/pitch about G."""
+    import capytaine as cpt
+
+    hull, dofs = _earth_hull(mesh, h0, th0, xg, zg)
+    return cpt.FloatingBody(mesh=hull, dofs=dofs).immersed_part().with_only_dofs(DOFS)
 
 
 def lidded_body(mesh, h0, th0, xg, zg, dofs):
@@ -63,13 +69,10 @@ def lidded_body(mesh, h0, th0, xg, zg, dofs):
     radiation, the diffraction force)."""
     import capytaine as cpt
 
-    cpt.set_logging("ERROR")
-    ve = earth_vertices(np.asarray(mesh.vertices, float), 0.0, th0, h0)
-    ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
-    hull = cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)).immersed_part()
+    hull, rigid = _earth_hull(mesh, h0, th0, xg, zg)
+    hull = hull.immersed_part()
     lid = hull.generate_lid(z=-1e-3 * float(np.ptp(hull.vertices[:, 2])))
-    body = cpt.FloatingBody(mesh=hull, lid_mesh=lid, dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge)))
-    return body.with_only_dofs(list(dofs))
+    return cpt.FloatingBody(mesh=hull, lid_mesh=lid, dofs=rigid).with_only_dofs(list(dofs))
 
 
 def radiation(body, omega, rho, solver=None):
@@ -90,12 +93,9 @@ def manoeuvring_added_mass(mesh, h0, th0, xg, zg, rho) -> np.ndarray:
     equilibrium (heave h0 [m], trim th0 [rad]), symmetrised."""
     import capytaine as cpt
 
-    cpt.set_logging("ERROR")
-    ve = earth_vertices(np.asarray(mesh.vertices, float), 0.0, th0, h0)
-    ge = earth_vertices(np.array([[xg, 0.0, zg]]), 0.0, th0, h0)[0]
     dofs = ["Surge", "Sway", "Yaw"]
-    body = cpt.FloatingBody(mesh=cpt.Mesh(vertices=ve, faces=np.asarray(mesh.faces)),
-                            dofs=cpt.rigid_body_dofs(rotation_center=tuple(ge))).immersed_part().with_only_dofs(dofs)
+    hull, rigid = _earth_hull(mesh, h0, th0, xg, zg)
+    body = cpt.FloatingBody(mesh=hull, dofs=rigid).immersed_part().with_only_dofs(dofs)
     solver = cpt.BEMSolver()
     # on one BLAS thread: the solve's rounding depends on BLAS's threads, and every 6-DOF job solves
     # it again (a two-thread split-time job's trawler records parted from the one-thread shards'

@@ -20,6 +20,7 @@ from stabflow.geometry import Sections
 from stabflow.io import annotate
 from stabflow.constants import G
 from stabflow.hydrostatics.statics import equilibrium
+from stabflow.dynamics.diffraction import ftab as diffraction_ftab
 from stabflow.waves.synthesis import station_wave_table
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics._kernels import _simulate
@@ -493,11 +494,7 @@ def simulate(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, waves,
         wtab = station_wave_table(amp, omega, phase, sec.x, heading_deg, speed, t_half, decay, curvature=curved)
     else:
         wtab = np.zeros((len(t_half), len(sec.x), 2))
-    ftab = np.empty((0, 6))
-    if diffraction is not None:
-        if abs(diffraction.heading_deg - heading_deg) > 1e-9:
-            raise ValueError(f"the diffraction force is for {diffraction.heading_deg} deg, the waves come from {heading_deg} deg")
-        ftab = diffraction.force_table(amp, omega, phase, speed, t_half)
+    ftab = diffraction_ftab(diffraction, waves, speed, heading_deg, t_half)
     p = parameters(co, rho, lcg, kg, heading_deg)
     s0 = rest if phi0_deg == 0.0 else initial_state(sec, st, phi0_deg)
     out = np.empty((nsteps + 1, K.N_STATE))

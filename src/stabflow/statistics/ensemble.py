@@ -33,6 +33,7 @@ from stabflow.io import annotate
 from stabflow.statistics.signals import SPECTRUM_SEGMENT, crossings, envelope, local_peaks, welch_psd
 from stabflow.hydrostatics.statics import compute_statics, equilibrium
 from stabflow.waves.seaway import Seaway
+from stabflow.dynamics.diffraction import ftab
 from stabflow.waves.synthesis import station_wave_table
 
 DOFS = ("heave", "roll", "pitch")
@@ -158,20 +159,27 @@ def diffraction_for(model: Model, heading_deg: float | None = None):
     return Diffraction(table, heading)
 
 
-def wave_table(model: Model, record: int, dtype=np.float32) -> np.ndarray:
-    """Wave table (2 nsteps + 1, nst, nq) of record ``record`` on the half-step grid."""
-    amp, w, ph = model.sea.components(model.cond["seed"], record)
+def wave_table(model: Model, record: int, dtype=np.float32, components=None) -> np.ndarray:
+    """Wave table (2 nsteps + 1, nst, nq) of record ``record`` (or of its ``components`` when already
+    drawn) on the half-step grid."""
+    amp, w, ph = model.sea.components(model.cond["seed"], record) if components is None else components
     t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
     return station_wave_table(amp, w, ph, model.sec.x, model.cond["heading_deg"], model.speed, t_half,
                               model.decay, dtype=dtype, curvature=model.curved)
 
 
 def force_table(model: Model, components, times) -> np.ndarray:
-    """The diffraction force (nt, 6) of the wave ``components`` at ``times`` (the kernel's ``ftab``),
-    or a (0, 6) array for a model without it."""
-    if model.diffraction is None:
-        return np.empty((0, 6))
-    return model.diffraction.force_table(*components, model.speed, times)
+    """The diffraction force (nt, 6) of the wave ``components`` at ``times`` (the kernel's ``ftab``,
+    :func:`stabflow.dynamics.diffraction.ftab`), or a (0, 6) array for a model without it."""
+    return ftab(model.diffraction, components, model.speed, float(model.cond["heading_deg"]), times)
+
+
+def volume_tables(model: Model, record: int):
+    """(wave table, diffraction force table) of a volume-based 3-DOF record on the half-step grid, its
+    components drawn once."""
+    comps = model.sea.components(model.cond["seed"], record)
+    t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
+    return wave_table(model, record, components=comps), force_table(model, comps, t_half)
 
 
 def record_table(model: Model, record: int):
@@ -184,8 +192,7 @@ def record_table(model: Model, record: int):
         t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
         return model.derivative.coefficient_table(model.sea.components(model.cond["seed"], record), t_half,
                                                   dtype=np.float32)
-    t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
-    return wave_table(model, record), force_table(model, model.sea.components(model.cond["seed"], record), t_half)
+    return volume_tables(model, record)
 
 
 def state_size(model: Model) -> int:
@@ -366,9 +373,9 @@ def run_shard(model: Model, records: range, progress: bool = True) -> xr.Dataset
         return shard_dataset(model, recs, per, samples, edges)
     for b0 in range(0, len(recs), BATCH):
         batch = recs[b0: b0 + BATCH]
-        tabs = np.stack([wave_table(model, r) for r in batch])
-        t_half = np.arange(2 * model.nsteps + 1) * 0.5 * model.dt
-        ftabs = np.stack([force_table(model, model.sea.components(cond["seed"], r), t_half) for r in batch])
+        pairs = [volume_tables(model, r) for r in batch]
+        tabs = np.stack([w for w, _ in pairs])
+        ftabs = np.stack([f for _, f in pairs])
         out = np.empty((len(batch), model.nsteps + 1, N_STATE))
         last = np.empty(len(batch), np.int64)
         _simulate_batch(*args, model.p, tabs, ftabs, model.dt, model.nsteps, model.s0, np.radians(90.0), out, last)
