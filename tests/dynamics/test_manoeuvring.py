@@ -202,6 +202,40 @@ def test_decay_factorisation_warns_when_its_rank_cap_is_not_enough(trawler, monk
     assert C.shape == (20, 1) and W.shape == (len(sec.x), synthesis.DECAY_BLOCKS)
 
 
+@pytest.mark.parametrize("nc", [20, 900])
+def test_decay_factorisation_against_the_truncated_svd(trawler, nc):
+    """``decay_factors`` (the leading singular triplets from the smaller Gram matrix's eigenvectors:
+    components x components for 20 components, columns x columns for 900 components on the trawler's
+    81 stations x 9 blocks) against numpy's SVD of the same matrix truncated at the same rank: the
+    rank equal and the factorised matrix C W^T within 1e-9 of its largest value; the line factors
+    C themselves within 1e-9 (the signs fixed by the weights WF's sum)."""
+    from stabflow.dynamics.model import section_decay
+    from stabflow.waves import synthesis
+
+    ship, sec, st, co, tabs, ab = trawler
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    dec = section_decay(sec, h0, th0)
+    rng = np.random.default_rng(nc)
+    w = np.sort(rng.uniform(0.3, 3.0, nc))
+    amp, k = 0.2 * np.exp(-((w - 1.0) / 0.5) ** 2), w**2 / G
+    C, W = synthesis.decay_factors(amp, k, dec)
+    r = C.shape[1]
+    F, Z, Y = dec.moments(k)
+    M = np.concatenate([F, Z, Y * k[None, :], *dec.heel_weights(k)]).T * (amp * k)[:, None]
+    norm = np.sqrt(np.sum(M**2, axis=0))
+    U, S, Vt = np.linalg.svd(M / np.where(norm > 0, norm, 1.0), full_matrices=False)
+    kept = np.cumsum((S[:, None] * Vt) ** 2, axis=0)
+    rank = 1 + int(np.argmax([np.all(1.0 - kept[j][norm > 0] <= synthesis.DECAY_RANK_TOLERANCE**2)
+                              for j in range(synthesis.DECAY_RANK_MAX)]))
+    assert r == rank and r < synthesis.DECAY_RANK_MAX
+    ref = (U[:, :r] * S[:r]) @ Vt[:r] * norm
+    nst = len(sec.x)
+    got = C @ np.concatenate([W[:, b * r:(b + 1) * r] for b in range(synthesis.DECAY_BLOCKS)], axis=0).T
+    np.testing.assert_allclose(got, ref, rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+    Cs = U[:, :r] * S[:r] * np.where((Vt[:r, :nst] * norm[:nst]).sum(axis=1) < 0, -1.0, 1.0)
+    np.testing.assert_allclose(C, Cs, rtol=0, atol=1e-9 * np.max(np.abs(Cs)))
+
+
 def test_line_table_phasor_recurrence_and_moving_points_against_direct_evaluation():
     """Equally spaced points (the phasor recurrence along the line, 300 points: 9 resets) against each
     point tabulated alone (cos and sin evaluated there), and a table whose points move at 1.7 m/s

@@ -802,3 +802,69 @@ def _r1_record_last(rng, nsteps, dt, phi, chol_q, chol_s, q, tab, cap, exc):
     ``_r1_excitation``), then RK4 until capsize; returns the last step done (< nsteps: capsized)."""
     _r1_excitation(rng, nsteps + 1, phi, chol_q, chol_s, exc)
     return _r1_run(exc, dt, 0, nsteps, 0.0, 0.0, q, tab, cap, np.empty((0, 2)))
+
+
+@njit(cache=True)
+def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y):
+    """Fill F, Z, Y (nst, nc) with the sections' area averages of e^(k z), (z - z_c) e^(k z) and
+    y^2 e^(k z) from their horizontal slices (``model.SectionDecay``: half heights (nst,), slice
+    mid-depths, areas, centroid offsets, int y^2 dA and its upper-minus-lower halves (nst, ns), section
+    areas (nst,)); a dry station (area 0) gets F = 1, Z = Y = 0. One pass over the slices per station
+    and wave number (``SectionDecay.moments`` documents the slice integrals)."""
+    nst, ns = area.shape
+    nc = k.shape[0]
+    for i in range(nst):
+        a_i = total[i]
+        if a_i <= 0.0:
+            for n in range(nc):
+                F[i, n] = 1.0
+                Z[i, n] = 0.0
+                Y[i, n] = 0.0
+            continue
+        h = half_height[i]
+        zc = 0.0
+        for j in range(ns):
+            zc += area[i, j] * (depth[i, j] + offset[i, j])
+        zc /= a_i
+        # the slices are equally spaced (2 h apart): e^(k z_m) by a geometric recurrence, reset to
+        # the exact value every 16 slices; otherwise (not by ``SectionDecay``'s construction) exp each
+        even = True
+        for j in range(1, ns):
+            if abs(depth[i, j] - depth[i, 0] - 2.0 * h * j) > 1e-12 * (1.0 + abs(depth[i, 0])):
+                even = False
+        for n in range(nc):
+            # a slice of half height h, area dA and centroid c above its middle z_m, its width linear
+            # in z: int e^(k z) w dz = e^(k z_m) dA [s1(x) + 3 (c / h) s2(x)], x = k h,
+            # s1 = sinh(x) / x, s2 = s1' = (x cosh x - sinh x) / x^2; its k-derivative,
+            # int z e^(k z) w dz, is e^(k z_m) dA [z_m (s1 + 3 (c / h) s2) + h (s2 + 3 (c / h) s2')],
+            # s2' = s1 - 2 s2 / x; int y^2 dA as a density linear across the slice:
+            # int u e^(k u) du over (-h, h) = 2 h^2 s2, its slope (I_2 - I_1) / h^2
+            x = h * k[n]
+            if x < 1e-3:
+                s1 = 1.0 + x * x / 6.0
+                s2 = x / 3.0 + x * x * x / 30.0
+                d2 = 1.0 / 3.0 + x * x / 10.0
+            else:
+                sh = math.sinh(x)
+                s1 = sh / x
+                s2 = (x * math.cosh(x) - sh) / (x * x)
+                d2 = s1 - 2.0 * s2 / x
+            f = 0.0
+            first = 0.0
+            y = 0.0
+            step = math.exp(2.0 * h * k[n])
+            e = 1.0
+            for j in range(ns):
+                if not even or (j & 15) == 0:
+                    e = math.exp(depth[i, j] * k[n])
+                else:
+                    e *= step
+                c = 3.0 * offset[i, j] / h
+                ea = e * area[i, j]
+                w = s1 + c * s2
+                f += ea * w
+                first += ea * (depth[i, j] * w + h * (s2 + c * d2))
+                y += e * (yy[i, j] * s1 + 2.0 * yy_tilt[i, j] * s2)
+            F[i, n] = f / a_i
+            Z[i, n] = first / a_i - zc * F[i, n]
+            Y[i, n] = y / a_i

@@ -307,14 +307,15 @@ class SectionDecay:
         depth = np.sum(self.slice_area * (self.slice_depth + self.slice_offset), axis=1) / np.where(wet, self.total, 1.0)
         self.centroid_height = np.where(wet, (st * np.asarray(sec.x) - h0 + depth) / ct, 0.0)
 
-    def heel_weights(self, k) -> tuple[np.ndarray, ...]:
+    def heel_weights(self, k, moments=None) -> tuple[np.ndarray, ...]:
         """The weights w_i(k_n) (each (nst, nc)) of the heeled section's six terms
         ``dynamics._kernels._fkhs`` sums as sum_n a_n k_n w_i(k_n) cos psi_n (the first three) and
         sin psi_n (the last three): 1 - F, A (1 - F), A (z_c (1 - F) + k Y - Z), then k, A k and
         A (z_c k (1 - F) + k^2 Y - k Z), with A the calm section's area [m^2] and z_c its centroid's
-        height above the body origin [m] (F, Z, Y of :meth:`moments`)."""
+        height above the body origin [m] (F, Z, Y of :meth:`moments`, or ``moments`` when the
+        caller has them for these ``k``)."""
         k = np.atleast_1d(np.asarray(k, float))
-        F, Z, Y = self.moments(k)
+        F, Z, Y = self.moments(k) if moments is None else moments
         A = self.total[:, None]
         zc = self.centroid_height[:, None]
         kk = k[None, :]
@@ -337,37 +338,11 @@ class SectionDecay:
         + 2 (I_2 - I_1) s2] (the density is (2 / 3) y_w^3, cubic in z for a width linear in z: the
         error is second order in k h, the slice's half height h; the slice's total at its mid-height
         alone was first order, 1.3e-2 on the DTC at k = 2 /m)."""
-        k = np.atleast_1d(np.asarray(k, float))
+        k = np.ascontiguousarray(np.atleast_1d(np.asarray(k, float)))
         nst = self.slice_area.shape[0]
-        F = np.ones((nst, len(k)))
-        Z = np.zeros((nst, len(k)))
-        Y = np.zeros((nst, len(k)))
-        wet = self.total > 0
-        # a slice of half height h, area dA and centroid c above its middle z_m, its width linear in z:
-        # int e^(k z) w dz = e^(k z_m) dA [s1(x) + 3 (c / h) s2(x)], x = k h, s1 = sinh(x) / x,
-        # s2 = s1' = (x cosh x - sinh x) / x^2; its k-derivative, int z e^(k z) w dz, is
-        # e^(k z_m) dA [z_m (s1 + 3 (c / h) s2) + h (s2 + 3 (c / h) s2')], s2' = s1 - 2 s2 / x
-        h = self.half_height[wet][:, None, None]
-        x = h * k[None, None, :]
-        small = x < 1e-3
-        xs = np.where(small, 1.0, x)
-        s1 = np.where(small, 1.0 + x**2 / 6.0, np.sinh(xs) / xs)
-        s2 = np.where(small, x / 3.0 + x**3 / 30.0, (xs * np.cosh(xs) - np.sinh(xs)) / xs**2)
-        d2 = np.where(small, 1.0 / 3.0 + x**2 / 10.0, s1 - 2.0 * s2 / xs)
-        zm = self.slice_depth[wet][:, :, None]
-        dA = self.slice_area[wet][:, :, None]
-        c = 3.0 * self.slice_offset[wet][:, :, None] / h
-        e = np.exp(zm * k[None, None, :]) * dA
-        area = self.total[wet][:, None]
-        F[wet] = np.sum(e * (s1 + c * s2), axis=1) / area
-        first = np.sum(e * (zm * (s1 + c * s2) + h * (s2 + c * d2)), axis=1) / area
-        zc = np.sum(self.slice_area[wet] * (self.slice_depth[wet] + self.slice_offset[wet]), axis=1) / self.total[wet]
-        Z[wet] = first - zc[:, None] * F[wet]
-        # a density linear across the slice: int u e^(k u) du over (-h, h) = 2 h^2 s2, its slope
-        # (I_2 - I_1) / h^2
-        Y[wet] = np.sum(np.exp(zm * k[None, None, :]) * (self.slice_yy[wet][:, :, None] * s1
-                                                         + 2.0 * self.slice_yy_tilt[wet][:, :, None] * s2),
-                        axis=1) / area
+        F, Z, Y = (np.empty((nst, len(k))) for _ in range(3))
+        K._decay_moments(k, self.half_height, self.slice_depth, self.slice_area, self.slice_offset, self.slice_yy,
+                         self.slice_yy_tilt, self.total, F, Z, Y)
         return F, Z, Y
 
 
