@@ -830,7 +830,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
         # the exact value every 16 slices; otherwise (not by ``SectionDecay``'s construction) exp each
         even = True
         for j in range(1, ns):
-            if abs(depth[i, j] - depth[i, 0] - 2.0 * h * j) > 1e-12 * (1.0 + abs(depth[i, 0])):
+            if abs(depth[i, j] - depth[i, 0] - 2.0 * h * j) > 1e-13 * (1.0 + abs(depth[i, 0])):
                 even = False
         for n in range(nc):
             # a slice of half height h, area dA and centroid c above its middle z_m, its width linear
@@ -852,10 +852,13 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
             f = 0.0
             first = 0.0
             y = 0.0
-            step = math.exp(2.0 * h * k[n])
+            # the recurrence only where its factor is finite and e^(k z_m) far from underflow (wave
+            # numbers of centimetre waves; exp at every slice there)
+            rec = even and 2.0 * h * k[n] < 700.0
+            step = math.exp(2.0 * h * k[n]) if rec else 1.0
             e = 1.0
             for j in range(ns):
-                if not even or (j & 15) == 0:
+                if not rec or (j & 15) == 0 or e < 1e-290:
                     e = math.exp(depth[i, j] * k[n])
                 else:
                     e *= step
