@@ -813,6 +813,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
     and wave number (``SectionDecay.moments`` documents the slice integrals)."""
     nst, ns = area.shape
     nc = k.shape[0]
+    c = np.empty(ns)  # 3 (slice centroid - mid-height) / h of a station's slices
     for i in range(nst):
         a_i = total[i]
         if a_i <= 0.0:
@@ -826,6 +827,8 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
         for j in range(ns):
             zc += area[i, j] * (depth[i, j] + offset[i, j])
         zc /= a_i
+        for j in range(ns):
+            c[j] = 3.0 * offset[i, j] / h
         # the slices are equally spaced (2 h apart): e^(k z_m) by a geometric recurrence, reset to
         # the exact value every 16 slices; otherwise (not by ``SectionDecay``'s construction) exp each
         even = True
@@ -862,11 +865,10 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                     e = math.exp(depth[i, j] * k[n])
                 else:
                     e *= step
-                c = 3.0 * offset[i, j] / h
                 ea = e * area[i, j]
-                w = s1 + c * s2
+                w = s1 + c[j] * s2
                 f += ea * w
-                first += ea * (depth[i, j] * w + h * (s2 + c * d2))
+                first += ea * (depth[i, j] * w + h * (s2 + c[j] * d2))
                 y += e * (yy[i, j] * s1 + 2.0 * yy_tilt[i, j] * s2)
             F[i, n] = f / a_i
             Z[i, n] = first / a_i - zc * F[i, n]
