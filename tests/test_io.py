@@ -44,3 +44,26 @@ def test_atomic_write_leaves_nothing_on_failure(tmp_path):
             open(tmp, "w").write("partial")
             raise RuntimeError("boom")
     assert not target.exists() and list(target.parent.iterdir()) == []
+
+
+def test_annotate_sets_the_table_attributes_on_variables_and_coordinates():
+    """CF attributes from the one table on data variables, dimension coordinates and scalars; other
+    variables and attributes left as they are; the dataset's own variables are changed."""
+    import numpy as np
+    import xarray as xr
+
+    from stabflow.io import CF_ATTRS, annotate
+
+    named = [n for n in ("roll_std", "lag", "frequency", "exposure_hours") if n in CF_ATTRS]
+    assert len(named) == 4
+    ds = xr.Dataset({"roll_std": ((), 1.0), "exposure_hours": ((), 2.0), "acov_sum": ("lag", np.zeros(3)),
+                     "not_in_table": ("frequency", np.zeros(2), {"note": "kept"})},
+                    coords={"lag": [0.0, 0.5, 1.0], "frequency": [0.1, 0.2]})
+    ds["roll_std"].attrs["extra"] = "kept"
+    out = annotate(ds)
+    assert out is ds
+    for n in named:
+        units, long_name = CF_ATTRS[n]
+        assert ds[n].attrs["units"] == units and ds[n].attrs["long_name"] == long_name
+    assert ds["roll_std"].attrs["extra"] == "kept"
+    assert ds["not_in_table"].attrs == {"note": "kept"}

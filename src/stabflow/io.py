@@ -366,10 +366,10 @@ CF_ATTRS.update({"radiation_omega": ("rad/s", "wave frequency of the heave-pitch
 
 def annotate(ds: xr.Dataset) -> xr.Dataset:
     """Attach CF attributes to every variable and coordinate of ``ds`` found in the table."""
-    for name in list(ds.variables):
+    for name, v in ds.variables.items():  # the dataset's own Variable objects (ds[name] builds a DataArray)
         if name in CF_ATTRS:
             units, long_name = CF_ATTRS[name]
-            ds[name].attrs.update(units=units, long_name=long_name)
+            v.attrs.update(units=units, long_name=long_name)
     return ds
 
 

@@ -159,3 +159,22 @@ def test_six_dof_loads_with_the_pressure_decay_in_a_following_wave_match_pressur
     assert r["kernel_fx_mean"] == pytest.approx(r["pressure_fx_mean"], rel=0.04)
     for q in ("fx", "fz", "my"):
         assert r[f"{q}_h1_difference"] < 0.04, q
+
+
+def test_following_wave_rows_with_the_decay_add_the_decay_off_mean_and_never_drop_it():
+    """With the pressure decay the rows carry the mean surge force with the decay off on both sides
+    (the geometry of the second-order force apart from the decay's stretching); without a mesh (the
+    surf-riding cases off) it is NOT APPLICABLE beside the others, never missing; without the decay
+    there is no such row."""
+    from stabflow.config import load_ship
+    from stabflow.dynamics.broaching import _following_wave_load_rows
+
+    from ..conftest import SHIPS
+
+    ship = load_ship(SHIPS / "trawler.yaml")
+    rows = _following_wave_load_rows(ship, _trawler(dphi_dzdt=True), [42.7], 1.8, [5.4], {}, enabled=False)
+    names = [r.check for r in rows]
+    assert len(rows) == 6 and sum("decay off on both sides" in n for n in names) == 1
+    assert all(r.status == "SKIPPED" for r in rows)
+    rows = _following_wave_load_rows(ship, _trawler(dphi_dzdt=False), [42.7], 1.8, [5.4], {}, enabled=False)
+    assert len(rows) == 5 and not any("decay off" in r.check for r in rows)

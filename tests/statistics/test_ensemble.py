@@ -285,3 +285,36 @@ def test_curved_waterline_condition_runs_the_curved_kernel():
     rad = synthetic_memory_dataset(float(compute_statics(trawler, build_hull(trawler))["lcg"]))
     six = {wl: build_model(trawler, dict(base, ship="trawler", dof=6, waterline=wl), None, rad) for wl in ("planar", "curved")}
     assert six["curved"].six.m[K6.M_CURVED] == 1.0 and six["planar"].six.m[K6.M_CURVED] == 0.0
+
+
+def test_merge_of_shards_read_from_files_equals_the_merge_in_memory(model, tmp_path):
+    """The ensemble step merges shards read back from NetCDF (with their encodings): the same dataset
+    (values, dtypes, attributes, variable order) and the same file bytes as merging them in memory;
+    the merged layout: record variables, events, sums, samples, then the statistics, every variable
+    of the CF table annotated."""
+    from stabflow.io import CF_ATTRS, write_netcdf
+
+    shards = [run_shard(model, range(3, 6), progress=False), run_shard(model, range(0, 3), progress=False)]
+    paths = []
+    for i, s in enumerate(shards):
+        paths.append(tmp_path / f"shard_{i}.nc")
+        write_netcdf(s, paths[-1])
+    read = [xr.open_dataset(p).load() for p in paths]
+    a, b = merge(shards), merge(read)
+    xr.testing.assert_identical(a, b)
+    assert list(a.variables) == list(b.variables)
+    write_netcdf(a, tmp_path / "a.nc")
+    write_netcdf(b, tmp_path / "b.nc")
+    assert (tmp_path / "a.nc").read_bytes() == (tmp_path / "b.nc").read_bytes()
+    names = list(a.data_vars)
+    order = ["steps", "moment_sums", "crossing_record", "peak_record", "envelope_peak_record", "acov_sum",
+             "roll_psd_sum", "hist_pitch", "sample_roll", "roll_std", "roll_autocorrelation", "roll_psd", "capsize_rate"]
+    assert [names.index(v) for v in order] == sorted(names.index(v) for v in order)
+    assert list(a["record"].values) == list(range(6)) and a.attrs["n_records"] == 6
+    for v in a.variables:
+        if v in CF_ATTRS:
+            assert a[v].attrs["units"] == CF_ATTRS[v][0], v
+    # a single shard: the same variables in the same order as the two
+    one = merge([run_shard(model, range(0, 6), progress=False)])
+    assert list(one.variables) == list(a.variables)
+    _same(one, a, summed_exact=False)

@@ -399,36 +399,34 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
     psds = [p["psd"] for p in per if p["psd"] is not None]
     nfreq = SPECTRUM_SEGMENT // 2 + 1
     freq = np.fft.rfftfreq(SPECTRUM_SEGMENT, model.dt) * 2 * np.pi
-    ds = xr.Dataset(
-        {
-            "steps": ("record", np.array([p["steps"] for p in per], np.int64)),
-            "capsized": ("record", np.array([p["capsized"] for p in per], np.int8)),
-            "capsize_time": ("record", np.array([p["capsize_time"] for p in per])),
-            "roll_max": ("record", np.array([p["roll_max"] for p in per])),
-            "moment_sums": (("record", "dof", "order"), np.array([p["moments"] for p in per]).reshape(nrec, 3, 4)),
-            "crossing_record": ("crossing", cr[:, 0].astype(np.int64)),
-            "crossing_threshold": ("crossing", cr[:, 1].astype(np.int64)),
-            "crossing_side": ("crossing", cr[:, 2].astype(np.int8)),
-            "crossing_time": ("crossing", cr[:, 3]),
-            "crossing_roll_rate": ("crossing", cr[:, 4]),
-            "crossing_step": ("crossing", cr[:, 5].astype(np.int64)),
-            "peak_record": ("peak", pk[:, 0].astype(np.int64)),
-            "peak_time": ("peak", pk[:, 1].astype(np.float32)),
-            "peak_value": ("peak", pk[:, 2].astype(np.float32)),
-            "envelope_peak_record": ("envelope_peak", ep[:, 0].astype(np.int64)),
-            "envelope_peak_time": ("envelope_peak", ep[:, 1]),
-            "envelope_peak_value": ("envelope_peak", ep[:, 2]),
-            "acov_sum": ("lag", np.sum([p["acov"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
-            "acov_count": ("lag", np.sum([p["acov_n"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
-            "psd_count": ((), len(psds)),
-        },
-        coords={"record": np.array(recs, np.int64), "dof": list(DOFS), "order": [1, 2, 3, 4],
-                "threshold": np.array(cond["thresholds_deg"], float), "lag": np.arange(maxlag + 1) * model.dt,
-                "frequency": freq},
-    )
-    # the variables that follow are gathered in order and the dataset is built again once, not
-    # assigned one by one (each assignment re-merges every variable: ~30 ms per one-record shard)
-    var = dict(ds.variables)
+    # the variables are gathered in order and the dataset is built once (each Dataset assignment
+    # re-merges every variable: ~30 ms per one-record shard)
+    var = {name: xr.Variable(*dv) for name, dv in {
+        "steps": ("record", np.array([p["steps"] for p in per], np.int64)),
+        "capsized": ("record", np.array([p["capsized"] for p in per], np.int8)),
+        "capsize_time": ("record", np.array([p["capsize_time"] for p in per])),
+        "roll_max": ("record", np.array([p["roll_max"] for p in per])),
+        "moment_sums": (("record", "dof", "order"), np.array([p["moments"] for p in per]).reshape(nrec, 3, 4)),
+        "crossing_record": ("crossing", cr[:, 0].astype(np.int64)),
+        "crossing_threshold": ("crossing", cr[:, 1].astype(np.int64)),
+        "crossing_side": ("crossing", cr[:, 2].astype(np.int8)),
+        "crossing_time": ("crossing", cr[:, 3]),
+        "crossing_roll_rate": ("crossing", cr[:, 4]),
+        "crossing_step": ("crossing", cr[:, 5].astype(np.int64)),
+        "peak_record": ("peak", pk[:, 0].astype(np.int64)),
+        "peak_time": ("peak", pk[:, 1].astype(np.float32)),
+        "peak_value": ("peak", pk[:, 2].astype(np.float32)),
+        "envelope_peak_record": ("envelope_peak", ep[:, 0].astype(np.int64)),
+        "envelope_peak_time": ("envelope_peak", ep[:, 1]),
+        "envelope_peak_value": ("envelope_peak", ep[:, 2]),
+        "acov_sum": ("lag", np.sum([p["acov"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
+        "acov_count": ("lag", np.sum([p["acov_n"] for p in per], axis=0) if per else np.zeros(maxlag + 1)),
+        "psd_count": ((), len(psds)),
+    }.items()}
+    var.update({c: xr.Variable(c, x) for c, x in (
+        ("record", np.array(recs, np.int64)), ("dof", list(DOFS)), ("order", [1, 2, 3, 4]),
+        ("threshold", np.array(cond["thresholds_deg"], float)), ("lag", np.arange(maxlag + 1) * model.dt),
+        ("frequency", freq))})
     if cond.get("lateral_acceleration"):  # the crew location's lateral acceleration
         lat = [p["lateral"] for p in per]
         lc = _events([q["crossings"] for q in lat], recs, 3)
@@ -505,73 +503,88 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     statistics: mean, standard deviation, skewness and kurtosis per DOF, roll autocorrelation,
     mean response spectra, exposure time, capsize count and rate."""
     shards = sorted(shards, key=lambda d: int(d["record"][0]) if d.sizes["record"] else 0)
+    first = shards[0].variables
     rec_vars = ["steps", "capsized", "capsize_time", "roll_max", "moment_sums"]
     rec_vars += [v for v in ("broached", "broach_time", "surf_riding", "lateral_max", "lateral_sum", "lateral_sum_squares",
-                             "lateral_zero_upcrossings") if v in shards[0]]
+                             "lateral_zero_upcrossings") if v in first]
     ev = {"crossing": [v for v in shards[0].data_vars if v.startswith("crossing_")],
           "peak": ["peak_record", "peak_time", "peak_value"],
           "envelope_peak": ["envelope_peak_record", "envelope_peak_time", "envelope_peak_value"]}
-    if "lateral_max" in shards[0]:
+    if "lateral_max" in first:
         ev.update(lateral_crossing=[v for v in shards[0].data_vars if v.startswith("lateral_crossing_")],
                   lateral_peak=["lateral_peak_record", "lateral_peak_time", "lateral_peak_value"])
-    if len(shards) == 1:  # nothing to concatenate (a DSA cell, a step-size re-run record): the
-        # variables in the order the concatenation gives (each record variable, then their
-        # coordinates, then the event variables)
-        d = shards[0]
-        names = rec_vars + [c for c in ("record", "dof", "order") if c in d.coords]
-        names += [v for group in ev.values() for v in group]
-        out = xr.Dataset({v: d[v].variable.copy(deep=False) for v in names})
+
+    def joined(names, dim):
+        # the shards' variables end to end along dim (a single shard's as they are), as xr.concat's
+        if len(shards) == 1:
+            return {v: first[v].copy(deep=False) for v in names}
+        return {v: xr.Variable.concat([d.variables[v] for d in shards], dim) for v in names}
+
+    # The dataset is built once from its variables, in the order (and with the values, dtypes,
+    # attributes and encodings) that concatenating the shards and assigning the statistics one group
+    # after another gives: each Dataset assignment re-merged and re-aligned every variable, which
+    # made merging a one-record shard (a DSA cell: 1,000 or more a ship) cost ~40 ms.
+    var = joined(rec_vars, "record")
+    if len(shards) == 1:
+        var.update(joined([c for c in ("record", "dof", "order") if c in first], "record"))
     else:
-        out = xr.concat([d[rec_vars] for d in shards], dim="record")
-        for dim, names in ev.items():
-            out = out.merge(xr.concat([d[names] for d in shards], dim=dim))
-    # the new variables are gathered and added in two assignments, not one by one: each Dataset
-    # assignment re-merges every variable, which made merging a one-record shard (a DSA cell) cost
-    # ~60 ms; the values, the variables and their order are those of one-by-one assignment
+        var["record"] = xr.IndexVariable.concat([d.variables["record"] for d in shards], "record")
+        var.update({c: first[c].copy(deep=False) for c in ("dof", "order")})
+    for dim, names in ev.items():
+        var.update(joined(names, dim))
+    # the sums over the shards, each after its coordinate (lag, frequency, bins), without attributes
+    # or encoding, as DataArray arithmetic leaves them
     sums = ["acov_sum", "acov_count", "psd_count"] + [f"{s}_psd_sum" for s in SERIES] + [f"hist_{k}" for k in DOFS]
-    new = {v: sum(d[v] for d in shards) for v in sums}  # DataArrays: their coordinates (lag, frequency, bins) come along
-    out = out.assign(new)
-    smp = [d[[v for v in d.data_vars if v.startswith("sample_")]] for d in shards if "sample" in d.dims]
+    for v in sums:
+        dims = first[v].dims
+        for c in dims:
+            var.setdefault(c, first[c])
+        var[v] = xr.Variable(dims, sum(d.variables[v].values for d in shards))
+    smp = [d.variables for d in shards if "sample" in d.dims]
     if smp:
-        out = out.merge(xr.concat(smp, dim="sample"))
-    out = out.assign_coords(threshold=shards[0]["threshold"])
+        var.update({v: xr.Variable.concat([d[v] for d in smp], "sample") for v in smp[0] if v.startswith("sample_")})
+        var["sample"] = xr.IndexVariable.concat([d["sample"] for d in smp], "sample")
+        var["time"] = smp[0]["time"]
+    var["threshold"] = first["threshold"]
     dt = shards[0].attrs["dt"]
-    n = out["steps"].values.astype(float) + 1  # samples per record
-    S = out["moment_sums"].sum("record").transpose("dof", "order")
-    S1, S2, S3, S4 = (S.sel(order=k).values for k in (1, 2, 3, 4))  # raw moment sums per DOF
+    steps = var["steps"].values
+    n = steps.astype(float) + 1  # samples per record
+    dofs = list(first["dof"].values)
+    orders = list(first["order"].values)
+    # raw moment sums per DOF: (dof, order) summed over the records
+    S = np.nansum(var["moment_sums"].values, axis=0)  # as xarray's sum (NaN skipped)
+    S1, S2, S3, S4 = (S[:, orders.index(k)] for k in (1, 2, 3, 4))
     N = n.sum()
     mean = S1 / N
     m2 = S2 / N - mean**2
     m3 = S3 / N - 3 * mean * S2 / N + 2 * mean**3
     m4 = S4 / N - 4 * mean * S3 / N + 6 * mean**2 * S2 / N - 3 * mean**4
-    new = {}
-    dofs = list(S["dof"].values)
     for k in DOFS:  # heave [m], roll and pitch [degree]: one variable each, with its units
-        new[f"{k}_mean"] = xr.Variable((), mean[dofs.index(k)])
-        new[f"{k}_std"] = xr.Variable((), np.sqrt(m2[dofs.index(k)]))
-    new["skewness"] = xr.Variable(("dof",), m3 / m2**1.5)
-    new["kurtosis"] = xr.Variable(("dof",), m4 / m2**2)
-    count = out["acov_count"].values
-    acf = out["acov_sum"].values / np.where(count > 0, count, np.nan)
-    new["roll_autocorrelation"] = xr.Variable(("lag",), acf / acf[0])
+        var[f"{k}_mean"] = xr.Variable((), mean[dofs.index(k)])
+        var[f"{k}_std"] = xr.Variable((), np.sqrt(m2[dofs.index(k)]))
+    var["skewness"] = xr.Variable(("dof",), m3 / m2**1.5)
+    var["kurtosis"] = xr.Variable(("dof",), m4 / m2**2)
+    count = var["acov_count"].values
+    acf = var["acov_sum"].values / np.where(count > 0, count, np.nan)
+    var["roll_autocorrelation"] = xr.Variable(("lag",), acf / acf[0])
     for s in SERIES:
-        new[f"{s}_psd"] = out[f"{s}_psd_sum"].variable / max(int(out["psd_count"]), 1)
-    hours = float(out["steps"].sum()) * dt / 3600.0
-    new["exposure_hours"] = xr.Variable((), hours)
-    new["capsize_count"] = xr.Variable((), int(out["capsized"].sum()))
-    new["capsize_rate"] = xr.Variable((), int(out["capsized"].sum()) / hours)
-    if "lateral_max" in out:
-        mean_a = float(out["lateral_sum"].sum()) / N
-        new["lateral_acceleration_std"] = xr.Variable((), float(np.sqrt(max(float(out["lateral_sum_squares"].sum()) / N
-                                                                                - mean_a**2, 0.0))))
-        new["lateral_zero_upcrossing_rate"] = xr.Variable((), float(out["lateral_zero_upcrossings"].sum())
+        var[f"{s}_psd"] = var[f"{s}_psd_sum"] / max(int(var["psd_count"].values), 1)
+    hours = float(steps.sum()) * dt / 3600.0
+    var["exposure_hours"] = xr.Variable((), hours)
+    caps = var["capsized"].values
+    var["capsize_count"] = xr.Variable((), int(caps.sum()))
+    var["capsize_rate"] = xr.Variable((), int(caps.sum()) / hours)
+    if "lateral_max" in first:
+        mean_a = float(np.nansum(var["lateral_sum"].values)) / N
+        var["lateral_acceleration_std"] = xr.Variable((), float(np.sqrt(max(float(np.nansum(var["lateral_sum_squares"].values))
+                                                                             / N - mean_a**2, 0.0))))
+        var["lateral_zero_upcrossing_rate"] = xr.Variable((), float(var["lateral_zero_upcrossings"].values.sum())
                                                           / (hours * 3600.0))
-        out = out.assign(new).assign_coords(lateral_limit=shards[0]["lateral_limit"])
-        new = {}
-    if "broached" in out:
-        new["broach_count"] = xr.Variable((), int(out["broached"].sum()))
-        new["surf_riding_count"] = xr.Variable((), int(out["surf_riding"].sum()))
-    out = out.assign(new)
+        var["lateral_limit"] = first["lateral_limit"]
+    if "broached" in first:
+        var["broach_count"] = xr.Variable((), int(var["broached"].values.sum()))
+        var["surf_riding_count"] = xr.Variable((), int(var["surf_riding"].values.sum()))
+    out = xr.Dataset(var)  # the variables named after their dimension are its coordinates
     out.attrs.update(shards[0].attrs)
     out.attrs["n_records"] = int(out.sizes["record"])
     return annotate(out)
