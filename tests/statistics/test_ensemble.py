@@ -318,3 +318,20 @@ def test_merge_of_shards_read_from_files_equals_the_merge_in_memory(model, tmp_p
     one = merge([run_shard(model, range(0, 6), progress=False)])
     assert list(one.variables) == list(a.variables)
     _same(one, a, summed_exact=False)
+
+
+def test_merge_keeps_the_first_shards_encoding_of_the_concatenated_coordinates(model, tmp_path):
+    """Shards stored with their own encoding of ``record`` and ``sample`` (int32, compressed): the
+    merged dataset keeps the first shard's, as xr.concat does, so a re-written ensemble stores them
+    the same way."""
+    shards = [run_shard(model, range(0, 3), progress=False), run_shard(model, range(3, 6), progress=False)]
+    read = []
+    for i, s in enumerate(shards):
+        enc = {c: {"dtype": "int32", "zlib": True} for c in ("record", "sample") if c in s.variables}
+        assert "sample" in enc
+        s.to_netcdf(tmp_path / f"s{i}.nc", encoding=enc)
+        read.append(xr.open_dataset(tmp_path / f"s{i}.nc").load())
+    out = merge(read[::-1])
+    for c in ("record", "sample"):
+        assert out[c].encoding.get("dtype") == np.dtype("int32") and out[c].encoding.get("zlib"), c
+    assert list(out["record"].values) == list(range(6))
