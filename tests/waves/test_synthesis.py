@@ -53,7 +53,10 @@ def test_blas_limit_holds_while_any_thread_is_inside():
     before = blas_threads()
     ta, tb = threading.Thread(target=a), threading.Thread(target=b)
     ta.start(), tb.start()
-    ta.join(5), tb.join(5)
+    # both must have left before the limit is read back (a 5-s join timed out on a loaded machine:
+    # threadpool_info inside b took longer, and the check ran with b still inside)
+    ta.join(120), tb.join(120)
+    assert not ta.is_alive() and not tb.is_alive()
     assert seen == [{1}] or not before  # no threaded BLAS loaded: nothing to see
     assert blas_threads() == before  # restored when both left
 
