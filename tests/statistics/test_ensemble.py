@@ -314,10 +314,10 @@ def test_merge_of_shards_read_from_files_equals_the_merge_in_memory(model, tmp_p
     for v in a.variables:
         if v in CF_ATTRS:
             assert a[v].attrs["units"] == CF_ATTRS[v][0], v
-    # a single shard: the same variables in the same order as the two
+    # a single shard: the same variables in the same order as the two (their values:
+    # test_sharding_does_not_change_results)
     one = merge([run_shard(model, range(0, 6), progress=False)])
     assert list(one.variables) == list(a.variables)
-    _same(one, a, summed_exact=False)
 
 
 def test_merge_keeps_the_first_shards_encoding_of_the_concatenated_coordinates(model, tmp_path):

@@ -314,10 +314,10 @@ def _extrapolate(ens: xr.Dataset, phi_f: float, alpha: float, tau: float, floors
             u = m * float(ens[sd])
             if u < floors[j]:
                 break
-            # report -1: no fixed-shape interval (the extremes step's shape share; not used here)
+            # report None: no fixed-shape interval (the extremes step's shape share; not used here)
             R, LO, HI, *_ = block_estimates(ens[f"{name}_record"].values, ens[f"{name}_time"].values.astype(float),
                                             np.abs(ens[f"{name}_value"].values.astype(float)), recs[capd],
-                                            ens["capsize_time"].values[capd], recs, hours, [u], [level], tau, alpha, -1)
+                                            ens["capsize_time"].values[capd], recs, hours, [u], [level], tau, alpha, None)
             if np.isfinite(R[0, 0]):
                 est, used[j] = (R[0, 0] / 3600.0, LO[0, 0] / 3600.0, HI[0, 0] / 3600.0), m
                 break

@@ -514,16 +514,16 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
         ev.update(lateral_crossing=[v for v in shards[0].data_vars if v.startswith("lateral_crossing_")],
                   lateral_peak=["lateral_peak_record", "lateral_peak_time", "lateral_peak_value"])
 
+    # The dataset is built once from its variables, in the order (and with the values, dtypes,
+    # attributes and encodings) that concatenating the shards and assigning the statistics one group
+    # after another gives: each Dataset assignment re-merged and re-aligned every variable, which
+    # made merging a one-record shard (a DSA cell: 1,000 or more a ship) cost ~40 ms.
     def joined(names, dim):
         # the shards' variables end to end along dim (a single shard's as they are), as xr.concat's
         if len(shards) == 1:
             return {v: first[v].copy(deep=False) for v in names}
         return {v: xr.Variable.concat([d.variables[v] for d in shards], dim) for v in names}
 
-    # The dataset is built once from its variables, in the order (and with the values, dtypes,
-    # attributes and encodings) that concatenating the shards and assigning the statistics one group
-    # after another gives: each Dataset assignment re-merged and re-aligned every variable, which
-    # made merging a one-record shard (a DSA cell: 1,000 or more a ship) cost ~40 ms.
     def index(name, group):
         # a dimension coordinate end to end, with the first shard's attributes and encoding (as
         # xr.concat gives; IndexVariable.concat alone drops the encoding)
@@ -533,7 +533,7 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
 
     var = joined(rec_vars, "record")
     for c in [c for c in first if c in ("record", "dof", "order")]:  # in the first shard's order
-        var[c] = index(c, [d.variables for d in shards]) if c == "record" and len(shards) > 1 else first[c].copy(deep=False)
+        var[c] = index(c, [d.variables for d in shards]) if c == "record" else first[c].copy(deep=False)
     for dim, names in ev.items():
         var.update(joined(names, dim))
     # the sums over the shards, each after its coordinate (lag, frequency, bins), without attributes

@@ -98,7 +98,7 @@ CAPSIZE_DEG = 90.0
 def block_estimates(data_rec, data_t, data_v, cap_rec, cap_t, recs, hours, u_list, targets, tau, alpha, report):
     """Rates at ``targets`` [deg] for each threshold of ``u_list`` from the block ``recs``: (rates,
     lowers, uppers, shapes, exceedances) each of shape (thresholds, targets), and the fixed-shape
-    (lower, upper) at threshold ``report``. NaN where a target lies below the threshold or fewer
+    (lower, upper) at threshold index ``report`` (None: not computed, NaN). NaN where a target lies below the threshold or fewer
     than MIN_EXCEEDANCES exceed it."""
     from stabflow.statistics.tail import TailData, fit, rate_estimate
 
