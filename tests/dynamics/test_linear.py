@@ -59,10 +59,11 @@ def test_rao_sweep_long_wave_limits(barge):
     assert float(ds.roll_rao[0]) < 1e-6
 
 
-def _barge_decay_models(barge, wavelength, heading, steepness):
+def _barge_decay_models(barge, wavelength, heading, steepness, waterline="planar"):
     """The barge's kernel with the pressure decay and pressure integration with the e^(k z) decay
-    on its box mesh (phase linearised across the beam), one regular wave of ``wavelength`` [m] and
-    ``steepness``: (kernel, pressure, h0, th0, encounter frequency)."""
+    on its box mesh (``waterline``: "planar", the phase linearised across the beam, or "exact"), one
+    regular wave of ``wavelength`` [m] and ``steepness``: (kernel, pressure, h0, th0, encounter
+    frequency)."""
     from stabflow.dynamics.linear import KernelLoads
     from stabflow.dynamics.model import section_decay
 
@@ -74,27 +75,36 @@ def _barge_decay_models(barge, wavelength, heading, steepness):
     v, f = trimesh.remesh.subdivide_to_size(m.vertices, m.faces, max_edge=2.0)
     W = regular(steepness * wavelength, wavelength)
     return (KernelLoads(sec, ship.rho, xg, zg, W, heading, 0.0, section_decay(sec, h0, th0)),
-            PressureModel(v, f, ship.rho, xg, zg, W, heading, 0.0, decay=True, waterline="planar"),
+            PressureModel(v, f, ship.rho, xg, zg, W, heading, 0.0, decay=True, waterline=waterline),
             h0, th0, float(W[1][0]))
 
 
 @pytest.mark.parametrize("wavelength,heading", [(40.0, 45.0), (120.0, 150.0)])
 def test_kernel_loads_with_pressure_decay_against_pressure_integration(barge, wavelength, heading):
     """All six first-harmonic FK loads of the kernel with the pressure decay (``SectionDecay``: the
-    vertical term, the area-averaged horizontal slope with its lever, the vertical and horizontal
-    gradients' variation across the beam) on the barge held at equilibrium in oblique regular waves,
-    H/lambda 1/500, within 1 % of each load's amplitude from pressure integration with the e^(k z)
-    decay on the box mesh (phase linearised across the beam, the kernel's assumption). Measured
-    0.03-0.65 %; without the horizontal gradient's cross-beam term the yaw moment was 6.5 % and
-    2.5 % off."""
+    vertical term with the cross-beam correction, the area-averaged horizontal slope with its lever,
+    the vertical and horizontal gradients' variation across the beam) on the barge held at
+    equilibrium in oblique regular waves, H/lambda 1/500, against pressure integration with the
+    e^(k z) decay on the box mesh: the vertical force and the pitch moment on the exact wave surface
+    within 1.5 % (the cross-beam correction; measured 0.56 / 1.05 % at lambda 40 m, 45 degree,
+    0.10 / 0.04 % at 120 m, 150 degree: the mesh's and the stations' resolution of the oblique
+    wave along the ship), the surge and sway forces, the roll and yaw moments within 1 % of pressure
+    integration with the phase linearised across the beam (the kernel's assumption for them;
+    measured 0.03-0.65 %; without the horizontal gradient's cross-beam term the yaw moment was 6.5 %
+    and 2.5 % off). Against the linearised phase the vertical force and pitch moment are now 19 % and
+    20 % off at lambda 40 m, as the kernel's were against the exact surface before the correction."""
     kernel, pressure, h0, th0, we = _barge_decay_models(barge, wavelength, heading, 1.0 / 500.0)
+    exact = _barge_decay_models(barge, wavelength, heading, 1.0 / 500.0, waterline="exact")[1]
     t = np.arange(64) * 2 * np.pi / we / 64
     amp = {}
-    for key, model in (("kernel", kernel), ("pressure", pressure)):
+    for key, model in (("kernel", kernel), ("pressure", pressure), ("exact", exact)):
         L = np.array([model.loads(tt, h0, 0.0, th0) for tt in t])
         amp[key] = np.array([a * np.exp(1j * p) for a, p in (first_harmonic(t, L[:, j], we) for j in range(6))])
-    err = np.abs(amp["kernel"] - amp["pressure"]) / np.abs(amp["pressure"])
-    assert np.all(err < 0.01), err
+    ref = amp["pressure"].copy()
+    ref[[2, 4]] = amp["exact"][[2, 4]]
+    err = np.abs(amp["kernel"] - ref) / np.abs(ref)
+    assert np.all(err[[0, 1, 3, 5]] < 0.01), err
+    assert np.all(err[[2, 4]] < 0.015), err
 
 
 @pytest.mark.parametrize("wavelength,heading", [(60.0, 90.0), (80.0, 60.0)])

@@ -134,8 +134,9 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     from the line table's rank-r factorisation (``decay_factors``: 1 % tolerance on each station's
     error standard deviation) at displaced and yawed stations, against the direct sums: dphi_zt =
     -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
-    T_yy = sum a k^2 Y sin psi, U_yy = -sum a k^2 Y cos psi and the heeled section's six sums
-    (``SectionDecay.heel_weights``), each within 2 % of its largest value (Hermite interpolation at 8 points per wavelength adds about 0.1 %). A
+    T_yy = sum a k^2 Y sin psi, U_yy = -sum a k^2 Y cos psi, the heeled section's six sums
+    (``SectionDecay.heel_weights``) and the cross-beam correction W = sum a X cos psi (X of
+    ``SectionDecay.moments`` at the course's heading, 30 degree), each within 2 % of its largest value (Hermite interpolation at 8 points per wavelength adds about 0.1 %). A
     regular wave's factorisation is exact (rank 1) and its station weights do not depend on the
     amplitude's sign."""
     from stabflow.waves.synthesis import DECAY_BLOCKS, DECAY_RANK_TOLERANCE
@@ -162,8 +163,10 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     b = np.radians(30.0)
     k = w**2 / G
     psi = k * (X * np.cos(b) + Y * np.sin(b))[:, None] - (w - k * SPEED * np.cos(b)) * 0.75 + ph
-    F, Z, Y = model.decay.moments(k)
+    F, Z, Y, Xb = model.decay.moments(k, np.sin(b))
+    assert np.max(np.abs(Xb)) > 0.01 * np.max(model.decay.total)  # the correction is there to read
     for col, exact in ((2, (-G * amp * k * F * np.cos(psi)).sum(1)), (3, (-amp * k * F * np.sin(psi)).sum(1)),
+                       (13, (amp * Xb * np.cos(psi)).sum(1)),
                        (4, (-amp * k * Z * np.sin(psi)).sum(1)), (5, (amp * k * k * Y * np.sin(psi)).sum(1)),
                        (6, (-amp * k * k * Y * np.cos(psi)).sum(1)),
                        *((7 + j, (amp * k * w * (np.cos(psi) if j < 3 else np.sin(psi))).sum(1))
@@ -173,9 +176,10 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     one, minus = (line_waves(model, (np.array([a]), w[:1], ph[:1])) for a in (0.5, -0.5))
     assert one.decay_weights.shape == (len(sec.x), DECAY_BLOCKS)
     np.testing.assert_allclose(one.decay_weights, minus.decay_weights, rtol=1e-12)
-    F1, Z1, Y1 = model.decay.moments(k[:1])
+    F1, Z1, Y1, X1 = model.decay.moments(k[:1], np.sin(b))
     np.testing.assert_allclose(one.decay_coef[0, 0] * one.decay_weights,
-                               0.5 * k[0] * np.column_stack([F1, Z1, k[0] * Y1, *model.decay.heel_weights(k[:1])]),
+                               0.5 * k[0] * np.column_stack([F1, Z1, k[0] * Y1, *model.decay.heel_weights(k[:1]),
+                                                             X1 / k[0]]),
                                rtol=1e-10, atol=1e-10)
 
 
@@ -206,7 +210,7 @@ def test_decay_factorisation_warns_when_its_rank_cap_is_not_enough(trawler, monk
 def test_decay_factorisation_against_the_truncated_svd(trawler, nc):
     """``decay_factors`` (the leading singular triplets from the smaller Gram matrix's eigenvectors:
     components x components for 20 components, columns x columns for 900 components on the trawler's
-    81 stations x 9 blocks) against numpy's SVD of the same matrix truncated at the same rank: the
+    81 stations x 10 blocks, waves 45 degree off the bow or stern) against numpy's SVD of the same matrix truncated at the same rank: the
     rank equal and the factorised matrix C W^T within 1e-9 of its largest value; the line factors
     C themselves within 1e-9 (the signs fixed by the weights WF's sum)."""
     from stabflow.dynamics.model import section_decay
@@ -218,10 +222,11 @@ def test_decay_factorisation_against_the_truncated_svd(trawler, nc):
     rng = np.random.default_rng(nc)
     w = np.sort(rng.uniform(0.3, 3.0, nc))
     amp, k = 0.2 * np.exp(-((w - 1.0) / 0.5) ** 2), w**2 / G
-    C, W = synthesis.decay_factors(amp, k, dec)
+    sb = np.sin(np.radians(45.0))
+    C, W = synthesis.decay_factors(amp, k, dec, sb)
     r = C.shape[1]
-    F, Z, Y = dec.moments(k)
-    M = np.concatenate([F, Z, Y * k[None, :], *dec.heel_weights(k)]).T * (amp * k)[:, None]
+    F, Z, Y, X = dec.moments(k, sb)
+    M = np.concatenate([F, Z, Y * k[None, :], *dec.heel_weights(k), X / k[None, :]]).T * (amp * k)[:, None]
     norm = np.sqrt(np.sum(M**2, axis=0))
     U, S, Vt = np.linalg.svd(M / np.where(norm > 0, norm, 1.0), full_matrices=False)
     kept = np.cumsum((S[:, None] * Vt) ** 2, axis=0)

@@ -168,9 +168,10 @@ def _station_wave(xs, p, m, s, line, decay, wave):
     decay (``decay`` (nst, ``DECAY_BLOCKS`` r), r > 0: the station weights (WF, WZ, WY, W_1 ...
     W_6) of ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j,
     S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j, T_yy = -sum_j WY_ij Q_j and
-    U_yy = sum_j WY_ij P_j / g in columns 2-6, the heeled section's H_1 ... H_6 in 7-12
+    U_yy = sum_j WY_ij P_j / g in columns 2-6, the heeled section's H_1 ... H_6 in 7-12, the
+    cross-beam correction W = -sum_j WX_ij P_j / g in 13
     (P_j, Q_j in the table's columns 3 + 4 j and 5 + 4 j, their slopes after each, Hermite as eta),
-    and with the curved waterline (``M_CURVED``) eta_xixi in column 3, or 7 with the decay: the
+    and with the curved waterline (``M_CURVED``) eta_xixi in column 3, or 14 with the decay: the
     first ``_wave_columns`` columns are ``_kernels._fkhs``'s layout. Column ``U_COLUMN`` receives
     u, the station's coordinate in the table [intervals] (``_tilt_loads``). Columns not written are
     left as they were."""
@@ -234,6 +235,7 @@ def _station_wave(xs, p, m, s, line, decay, wave):
             h4 = 0.0
             h5 = 0.0
             h6 = 0.0
+            cw = 0.0  # the cross-beam correction W = -sum_j WX_ij P_j / g
             for j in range(nr):
                 c = 3 + 4 * j
                 pj = _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], t, h)
@@ -249,6 +251,7 @@ def _station_wave(xs, p, m, s, line, decay, wave):
                 h4 -= decay[i, 6 * nr + j] * qj
                 h5 -= decay[i, 7 * nr + j] * qj
                 h6 -= decay[i, 8 * nr + j] * qj
+                cw -= decay[i, 9 * nr + j] * pj
             wave[i, 2] = dz
             wave[i, 3] = sh
             wave[i, 4] = shz
@@ -260,6 +263,7 @@ def _station_wave(xs, p, m, s, line, decay, wave):
             wave[i, 10] = h4
             wave[i, 11] = h5
             wave[i, 12] = h6
+            wave[i, 13] = cw * ig
         if curved:
             wave[i, ic] = _hermite_slope(line[k, 1], line[k, 2], line[k + 1, 1], line[k + 1, 2], t, h)
         wave[i, U_COLUMN] = u
@@ -580,7 +584,7 @@ def _memory(p, m, s, r, ds, u):
 @njit(cache=True, inline="always")
 def _wave_columns(m, decay):
     """Columns of ``_kernels``'s station-wave layout: 2, 4 with the curved waterline,
-    ``DECAY_COLUMNS`` (13) with the pressure decay, one more with both."""
+    ``DECAY_COLUMNS`` (14) with the pressure decay, one more with both."""
     if decay.shape[1] > 0:
         return DECAY_COLUMNS + (1 if m[M_CURVED] != 0.0 else 0)
     return 4 if m[M_CURVED] != 0.0 else 2

@@ -278,6 +278,8 @@ class SectionDecay:
         self.half_height = np.zeros(nst)  # slices' half height [m]
         self.slice_yy = np.zeros((nst, slices))  # slice int y^2 dA [m^4]
         self.slice_yy_tilt = np.zeros((nst, slices))  # upper half's int y^2 dA - lower half's [m^4]
+        self.slice_breadth = np.zeros((nst, slices))  # slice area / height: its mean breadth [m]
+        self.waterline_breadth = np.zeros(nst)  # breadth at the calm waterline [m]
         for i in range(nst):
             n = sec.n[i]
             c = st * sec.x[i] - h0  # calm waterline b z = c in the section's plane (a = 0, b = cos th0)
@@ -298,6 +300,10 @@ class SectionDecay:
             with np.errstate(invalid="ignore", divide="ignore"):
                 zc = np.where(dA > 0, np.diff(m) / np.where(dA > 0, dA, 1.0), zm)
             self.slice_area[i] = dA
+            self.slice_breadth[i] = dA / ((zw - lo) / slices)
+            # the calm waterline's breadth: dA/dz over the top ten-thousandth of the depth
+            dz = 1e-4 * (zw - lo)
+            self.waterline_breadth[i] = (a[-1] - _section_moments(sec.y[i], sec.z[i], n, 0.0, 1.0, zw - dz)[0]) / dz
             self.slice_depth[i] = (zm - zw) * ct
             self.slice_offset[i] = (zc - zm) * ct
             self.half_height[i] = 0.5 * (zw - lo) / slices * ct
@@ -327,7 +333,13 @@ class SectionDecay:
         """F_i(k_n) (nst, nc) for wave numbers ``k`` (nc,) [1/m]; 1 at a dry station."""
         return self.moments(k)[0]
 
-    def moments(self, k) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def crossbeam(self, k, sin_beta: float) -> np.ndarray:
+        """The cross-beam correction X_i(k_n) (nst, nc) [m^2] of the linear vertical FK force per
+        unit length for long-crested waves of heading sin(beta) ``sin_beta`` (:meth:`moments`,
+        which computes it in the same pass when given ``sin_beta``)."""
+        return self.moments(k, sin_beta)[3]
+
+    def moments(self, k, sin_beta: float | None = None) -> tuple[np.ndarray, ...]:
         """(F_i(k_n), Z_i(k_n), Y_i(k_n)), each (nst, nc), for wave numbers ``k`` (nc,) [1/m]: the
         area averages of e^(k z) [-], of (z - z_c) e^(k z) [m] (z_c the section's centroid) and of
         y^2 e^(k z) [m^2] (F = 1, Z = Y = 0 at a dry station). Z / F is the height of the horizontal
@@ -337,13 +349,27 @@ class SectionDecay:
         with its two halves' integrals I_1 (lower) and I_2 (upper) exact: e^(k z_m) [(I_1 + I_2) s1
         + 2 (I_2 - I_1) s2] (the density is (2 / 3) y_w^3, cubic in z for a width linear in z: the
         error is second order in k h, the slice's half height h; the slice's total at its mid-height
-        alone was first order, 1.3e-2 on the DTC at k = 2 /m)."""
+        alone was first order, 1.3e-2 on the DTC at k = 2 /m).
+
+        With ``sin_beta`` (the waves' heading's sine) a fourth array, X_i(k_n) [m^2]: the linear
+        vertical FK force's part that the sections' planar waterline leaves out. Gauss's theorem on
+        a section in a long-crested wave of wave number k and k_y = k sin(beta) across the ship
+        gives the force per unit length rho g a cos(psi) (b sinc(k_y b / 2) -
+        k int e^(k z) cos(k_y y) dA) (b the calm waterline breadth, a symmetric section); the
+        planar waterline and :meth:`moments`' F give rho g a cos(psi) (b - k A F). Their
+        difference, X = b (sinc(k_y b / 2) - 1) - k int e^(k z) (sinc(k_y B / 2) - 1) dA (each
+        slice's breadth B: one interval of y at each depth), is 0 in head and following waves and
+        for waves long against the beam; in beam waves twice the roll frequency it is a third of the
+        trawler's heave force (``_kernels._fkhs`` adds rho g X a cos(psi) per unit length: the
+        linear heave force and pitch moment are then exact for any heading)."""
         k = np.ascontiguousarray(np.atleast_1d(np.asarray(k, float)))
         nst = self.slice_area.shape[0]
         F, Z, Y = (np.empty((nst, len(k))) for _ in range(3))
+        X = np.empty((nst if sin_beta is not None else 0, len(k)))
         K._decay_moments(k, self.half_height, self.slice_depth, self.slice_area, self.slice_offset, self.slice_yy,
-                         self.slice_yy_tilt, self.total, F, Z, Y)
-        return F, Z, Y
+                         self.slice_yy_tilt, self.total, F, Z, Y, 0.0 if sin_beta is None else float(sin_beta),
+                         self.slice_breadth, self.waterline_breadth, X)
+        return (F, Z, Y) if sin_beta is None else (F, Z, Y, X)
 
 
 def section_decay(sec: Sections, h0: float, th0: float) -> SectionDecay:

@@ -128,13 +128,14 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
     ``decay`` (:class:`stabflow.dynamics.model.SectionDecay`: the sections' area averages F_i(k),
     Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z)) adds the pressure's decay with
-    depth as eleven columns (nq = 13, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
+    depth as twelve columns (nq = 14, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
     -g sum_n a_n k_n F_i(k_n) cos psi_n, the area-averaged slope S_h = -sum a k F sin psi, its
     moment about the centroid S_hz = -sum a k Z sin psi [m], T_yy = sum a k^2 Y sin psi [m] and
     U_yy = -sum a k^2 Y cos psi [m], then the heeled section's six terms H_1 ... H_6
-    (``dynamics._kernels``), 13 columns; None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
+    (``dynamics._kernels``) and the cross-beam correction W = sum a X cos psi [m^2]
+    (``SectionDecay.moments``' X at this heading), 14 columns; None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
     propagation eta_xixi [1/m] for the curved waterline across each section
-    (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 14 with
+    (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 15 with
     ``decay``). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
     the table is one matrix product of the time factors (nt, 2 nc) with the station coefficients
     (2 nc, nst nq), in ``dtype`` (float32 halves the cost of long ensembles).
@@ -154,7 +155,7 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     if decay is not None:
         # dphi_zt = -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
         # T_yy = sum a k^2 Y sin psi, U_yy = -sum a k^2 Y cos psi
-        F, Z, Y = decay.moments(k)
+        F, Z, Y, X = decay.moments(k, np.sin(np.radians(heading_deg)))
         cols.append((-G * ak * F * cP, -G * ak * F * sP))
         cols.append((-ak * F * sP, ak * F * cP))
         cols.append((-ak * Z * sP, ak * Z * cP))
@@ -166,6 +167,7 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
             cols.append((ak * w * cP, ak * w * sP))
         for w in hw[3:]:
             cols.append((ak * w * sP, -ak * w * cP))
+        cols.append((amp * X * cP, amp * X * sP))  # W = sum a X cos psi, the cross-beam correction
     elif curvature:
         cols.append((np.zeros_like(cP), np.zeros_like(sP)))
     if curvature:
@@ -180,11 +182,12 @@ DECAY_RANK_TOLERANCE = 0.01
 #: the largest rank (four table columns each)
 DECAY_RANK_MAX = 6
 #: the station weights' blocks of :func:`decay_factors`: WF, WZ, WY of a_n k_n times F, Z, k Y
-#: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``)
-DECAY_BLOCKS = 9
+#: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``) and WX of
+#: a_n k_n times X / k (the cross-beam correction, ``SectionDecay.moments``)
+DECAY_BLOCKS = 10
 
 
-def decay_factors(amp, k, decay):
+def decay_factors(amp, k, decay, sin_beta: float = 0.0):
     """The stations' pressure-decay terms (``dynamics._kernels``'s layouts: dphi_zt, S_h, S_hz, T_yy, U_yy)
     as sums of r products of a station weight and a line quantity.
 
@@ -193,20 +196,22 @@ def decay_factors(amp, k, decay):
     -sum_n a_n k_n Z_i(k_n) sin psi_n, sum_n a_n k_n^2 Y_i(k_n) sin psi_n and
     -sum_n a_n k_n^2 Y_i(k_n) cos psi_n need
     a_n k_n (F_i, Z_i, k_n Y_i)(k_n) ~ sum_j (WF_ij, WZ_ij, WY_ij) C_nj, and the heeled section's
-    six terms a_n k_n w_i(k_n) ~ sum_j W_ij C_nj (w of ``SectionDecay.heel_weights``): one
+    six terms a_n k_n w_i(k_n) ~ sum_j W_ij C_nj (w of ``SectionDecay.heel_weights``) and the
+    cross-beam correction a_n X_i(k_n) ~ sum_j WX_ij C_nj (X of ``SectionDecay.moments`` for waves of
+    heading sine ``sin_beta``; the 6-DOF records take it at the course's heading): one
     truncated singular value decomposition of the (component, ``DECAY_BLOCKS`` x station) matrix
     of the nine, each station's column scaled to unit norm. Its r is the least for which every column's residual norm over the components (the
     standard deviation of the term's error over random phases) is within ``DECAY_RANK_TOLERANCE`` of
     the column's norm, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
     is not enough). Returns the line factors C (nc, r) and the station
-    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY and the six heeled ones, each factor's sign
+    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY, the six heeled ones and WX, each factor's sign
     chosen so that its weights WF sum to >= 0 (one regular wave's weights then do not depend on
     its amplitude's sign)."""
     amp = np.asarray(amp, float)
     k = np.asarray(k, float)
-    F, Z, Y = decay.moments(k)  # (nst, nc) each
+    F, Z, Y, X = decay.moments(k, sin_beta)  # (nst, nc) each
     nst = F.shape[0]
-    M = np.concatenate([F, Z, Y * k[None, :], *decay.heel_weights(k, (F, Z, Y))]).T * (amp * k)[:, None]
+    M = np.concatenate([F, Z, Y * k[None, :], *decay.heel_weights(k, (F, Z, Y)), X / k[None, :]]).T * (amp * k)[:, None]
     norm = np.sqrt(np.sum(M**2, axis=0))
     live = norm > 0
     Mn = M / np.where(live, norm, 1.0)
@@ -264,8 +269,9 @@ class LineWaves:
         tables then carry r = ``decay_coef.shape[1]`` groups of four columns (:func:`decay_factors`),
         P_j = -g sum_n C_nj cos psi_n, its slope dP_j/dxi, Q_j = -sum_n C_nj sin psi_n and dQ_j/dxi;
         at station i, dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j,
-        T_yy = -sum_j WY_ij Q_j and U_yy = sum_j WY_ij P_j / g, and the heeled section's terms, with
-        ``decay_weights`` (nst, ``DECAY_BLOCKS`` r) = (WF, WZ, WY, W1, Wk, WkF, WkZ, WkY).
+        T_yy = -sum_j WY_ij Q_j and U_yy = sum_j WY_ij P_j / g, the heeled section's terms and the
+        cross-beam correction W = -sum_j WX_ij P_j / g, with ``decay_weights`` (nst,
+        ``DECAY_BLOCKS`` r) = (WF, WZ, WY, W_1 ... W_6, WX).
     """
 
     def __init__(self, amp, omega, phase, heading_deg: float, speed: float, decay=None):
@@ -277,7 +283,8 @@ class LineWaves:
         self.k = self.omega**2 / G
         self.we = encounter_frequency(self.omega, speed, heading_deg)
         if decay is not None and len(self.amp):
-            self.decay_coef, self.decay_weights = decay_factors(self.amp, self.k, decay)
+            self.decay_coef, self.decay_weights = decay_factors(self.amp, self.k, decay,
+                                                                np.sin(np.radians(heading_deg)))
         else:
             self.decay_coef = np.zeros((len(self.amp), 0))
             self.decay_weights = np.zeros((0 if decay is None else len(decay.total), 0))
