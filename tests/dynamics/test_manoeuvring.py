@@ -163,8 +163,11 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     b = np.radians(30.0)
     k = w**2 / G
     psi = k * (X * np.cos(b) + Y * np.sin(b))[:, None] - (w - k * SPEED * np.cos(b)) * 0.75 + ph
-    F, Z, Y, Xb = model.decay.moments(k, np.sin(b))
-    assert np.max(np.abs(Xb)) > 0.01 * np.max(model.decay.total)  # the correction is there to read
+    F, Z, Y = model.decay.moments(k)
+    # the cross-beam correction at the relative heading beta - psi = 5 degree, interpolated on the
+    # nodes sin^2 = 0, 0.25 (the course's 30 degree) and 1
+    Xb = model.decay.crossbeam(k, np.sin(b - s[K.S_YAW]))
+    assert np.max(np.abs(Xb)) > 1e-4 * np.max(model.decay.total)  # the correction is there to read
     for col, exact in ((2, (-G * amp * k * F * np.cos(psi)).sum(1)), (3, (-amp * k * F * np.sin(psi)).sum(1)),
                        (13, (amp * Xb * np.cos(psi)).sum(1)),
                        (4, (-amp * k * Z * np.sin(psi)).sum(1)), (5, (amp * k * k * Y * np.sin(psi)).sum(1)),
@@ -179,7 +182,7 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     F1, Z1, Y1, X1 = model.decay.moments(k[:1], np.sin(b))
     np.testing.assert_allclose(one.decay_coef[0, 0] * one.decay_weights,
                                0.5 * k[0] * np.column_stack([F1, Z1, k[0] * Y1, *model.decay.heel_weights(k[:1]),
-                                                             X1 / k[0]]),
+                                                             X1 / k[0], model.decay.crossbeam(k[:1], 1.0) / k[0]]),
                                rtol=1e-10, atol=1e-10)
 
 
@@ -210,7 +213,7 @@ def test_decay_factorisation_warns_when_its_rank_cap_is_not_enough(trawler, monk
 def test_decay_factorisation_against_the_truncated_svd(trawler, nc):
     """``decay_factors`` (the leading singular triplets from the smaller Gram matrix's eigenvectors:
     components x components for 20 components, columns x columns for 900 components on the trawler's
-    81 stations x 10 blocks, waves 45 degree off the bow or stern) against numpy's SVD of the same matrix truncated at the same rank: the
+    81 stations x 11 blocks, waves 45 degree off the bow or stern) against numpy's SVD of the same matrix truncated at the same rank: the
     rank equal and the factorised matrix C W^T within 1e-9 of its largest value; the line factors
     C themselves within 1e-9 (the signs fixed by the weights WF's sum)."""
     from stabflow.dynamics.model import section_decay
@@ -225,12 +228,11 @@ def test_decay_factorisation_against_the_truncated_svd(trawler, nc):
     sb = np.sin(np.radians(45.0))
     C, W = synthesis.decay_factors(amp, k, dec, sb)
     r = C.shape[1]
-    F, Z, Y, X = dec.moments(k, sb)
-    M = np.concatenate([F, Z, Y * k[None, :], *dec.heel_weights(k), X / k[None, :]]).T * (amp * k)[:, None]
-    norm = np.sqrt(np.sum(M**2, axis=0))
+    M, norm, full = synthesis.decay_matrix(amp, k, dec, sb)
+    assert M.shape == (nc, synthesis.DECAY_BLOCKS * len(sec.x)) and np.all(full <= 1.0 + 1e-12)
     U, S, Vt = np.linalg.svd(M / np.where(norm > 0, norm, 1.0), full_matrices=False)
     kept = np.cumsum((S[:, None] * Vt) ** 2, axis=0)
-    rank = 1 + int(np.argmax([np.all(1.0 - kept[j][norm > 0] <= synthesis.DECAY_RANK_TOLERANCE**2)
+    rank = 1 + int(np.argmax([np.all(full[norm > 0] - kept[j][norm > 0] <= synthesis.DECAY_RANK_TOLERANCE**2)
                               for j in range(synthesis.DECAY_RANK_MAX)]))
     assert r == rank and r < synthesis.DECAY_RANK_MAX
     ref = (U[:, :r] * S[:r]) @ Vt[:r] * norm

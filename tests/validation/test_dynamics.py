@@ -1,5 +1,7 @@
 """Validation rows of the 3-DOF time-domain model (stabflow.validation.dynamics)."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -129,7 +131,8 @@ def test_barge_every_row_present_and_passes(barge_rows):
     hroll, hheave = (rows[n] for n in HYBRID_ROWS)
     assert hroll.status == "PASS" and 1.0 < hroll.value < 3.0 and "alone against Capytaine's +1.3 %" in hroll.reference
     assert hheave.status == "PASS" and abs(hheave.value) < 0.5 and "/ |FK| 0.77" in hheave.reference
-    assert "alone against Capytaine's -0.0 %" in hheave.reference
+    fk = re.search(r"alone against Capytaine's ([+-]?[0-9.]+) %", hheave.reference)
+    assert fk and abs(float(fk.group(1))) < 0.5, hheave.reference
     ds = checks_dataset("barge", "dynamics", list(rows.values()))
     assert list(ds["name"].values[ds["status"].values == "FAIL"]) == [GM_EXACT_VARIATION]
     assert ds.sizes["check"] == len(EXPECTED)

@@ -178,8 +178,10 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
     barge's heel part of the roll moment 12 % further from pressure integration's (beam waves,
     lambda 60 m, +-10 degree), whose planar and exact surfaces differ there by 81 %; not with the curved waterline,
     whose parabola across the beam already carries a part of it. In beam waves at twice the roll
-    frequency the heave force of pressure integration on the exact surface was +39 % (trawler),
-    +18 % (DTMB 5415) and +12 % (barge) off without it, +0.1 ... +0.6 % with it (2026-12-07).
+    frequency the kernel's heave force (ship held) was +39.3 % (trawler), +18.2 % (DTMB 5415) and
+    +12.0 % (barge) off pressure integration with decay on the exact surface without it, +0.3,
+    +0.2 and +0.1 % with it; at 45 degree, lambda 21.7 m the trawler's +10.6 % became +0.5 %
+    (2026-12-07; the box: exact, a test).
     Without the decay the dynamic pressure does not vary with depth and none of these arises; with
     the decay in the horizontal force alone, the roll excitation in beam seas would be far off
     (DTMB 5415, lambda 60 m: +98 % against pressure integration with decay). Returns the volume [m^3].
@@ -843,6 +845,11 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
     nst, ns = area.shape
     nc = k.shape[0]
     cross = X.shape[0] > 0
+    if cross and sb == 0.0:  # head and following waves: none
+        cross = False
+        for i in range(nst):
+            for n in range(nc):
+                X[i, n] = 0.0
     c = np.empty(ns)  # 3 (slice centroid - mid-height) / h of a station's slices
     for i in range(nst):
         a_i = total[i]

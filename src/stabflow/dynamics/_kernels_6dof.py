@@ -166,10 +166,12 @@ def _station_wave(xs, p, m, s, line, decay, wave):
 
     ``wave`` (nst, ``WAVE_BUFFER``) receives (eta, S) in its first columns, then with the pressure
     decay (``decay`` (nst, ``DECAY_BLOCKS`` r), r > 0: the station weights (WF, WZ, WY, W_1 ...
-    W_6) of ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j,
+    W_6, WX_a, WX_b) of ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j,
     S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j, T_yy = -sum_j WY_ij Q_j and
     U_yy = sum_j WY_ij P_j / g in columns 2-6, the heeled section's H_1 ... H_6 in 7-12, the
-    cross-beam correction W = -sum_j WX_ij P_j / g in 13
+    cross-beam correction W = -sum_j (l_a WX_a,ij + l_b WX_b,ij) P_j / g in 13 (l_a, l_b: quadratic
+    interpolation in u = sin^2 of the relative heading beta - psi on the nodes 0, u_a and 1 of
+    ``waves.synthesis.crossbeam_node``, exact at the course's heading)
     (P_j, Q_j in the table's columns 3 + 4 j and 5 + 4 j, their slopes after each, Hermite as eta),
     and with the curved waterline (``M_CURVED``) eta_xixi in column 3, or 14 with the decay: the
     first ``_wave_columns`` columns are ``_kernels._fkhs``'s layout. Column ``U_COLUMN`` receives
@@ -206,6 +208,14 @@ def _station_wave(xs, p, m, s, line, decay, wave):
         for i in range(xs.shape[0]):
             wave[i, 2] = 0.0
     inside = True
+    # the cross-beam correction's interpolation weights at the relative heading's u = sin^2 on the
+    # nodes 0, u_a, 1 (``waves.synthesis.crossbeam_node``: the same arithmetic)
+    ua = sb * sb
+    if ua < 0.01 or ua > 0.99:
+        ua = 0.5
+    u = math.sin(math.atan2(sb, cb) - s[S_YAW]) ** 2
+    la = u * (u - 1.0) / (ua * (ua - 1.0))
+    lb = u * (u - ua) / (1.0 - ua)
     for i in range(xs.shape[0]):
         d = ct * (xs[i] - xg) + ox
         xi = (x0 + cy * d) * cb + (y0 + sy * d) * sb
@@ -235,7 +245,7 @@ def _station_wave(xs, p, m, s, line, decay, wave):
             h4 = 0.0
             h5 = 0.0
             h6 = 0.0
-            cw = 0.0  # the cross-beam correction W = -sum_j WX_ij P_j / g
+            cw = 0.0  # the cross-beam correction W = -sum_j (l_a WX_a,ij + l_b WX_b,ij) P_j / g
             for j in range(nr):
                 c = 3 + 4 * j
                 pj = _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], t, h)
@@ -251,7 +261,7 @@ def _station_wave(xs, p, m, s, line, decay, wave):
                 h4 -= decay[i, 6 * nr + j] * qj
                 h5 -= decay[i, 7 * nr + j] * qj
                 h6 -= decay[i, 8 * nr + j] * qj
-                cw -= decay[i, 9 * nr + j] * pj
+                cw -= (la * decay[i, 9 * nr + j] + lb * decay[i, 10 * nr + j]) * pj
             wave[i, 2] = dz
             wave[i, 3] = sh
             wave[i, 4] = shz

@@ -121,13 +121,13 @@ def encounter_frequency(omega, speed: float, heading_deg: float):
 
 def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=None,
                        dtype=np.float64, curvature: bool = False) -> np.ndarray:
-    """(nt, nst, nq) table of the stations' wave (eta, S[, the pressure decay's three columns][, eta_xixi]: the
+    """(nt, nst, nq) table of the stations' wave (eta, S[, the pressure decay's twelve columns][, eta_xixi]: the
     layouts of ``dynamics._kernels``) at stations ``xs`` and equally spaced
     ``times``.
 
     S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
     ``decay`` (:class:`stabflow.dynamics.model.SectionDecay`: the sections' area averages F_i(k),
-    Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z)) adds the pressure's decay with
+    Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z), and the cross-beam correction X_i(k)) adds the pressure's decay with
     depth as twelve columns (nq = 14, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
     -g sum_n a_n k_n F_i(k_n) cos psi_n, the area-averaged slope S_h = -sum a k F sin psi, its
     moment about the centroid S_hz = -sum a k Z sin psi [m], T_yy = sum a k^2 Y sin psi [m] and
@@ -182,9 +182,22 @@ DECAY_RANK_TOLERANCE = 0.01
 #: the largest rank (four table columns each)
 DECAY_RANK_MAX = 6
 #: the station weights' blocks of :func:`decay_factors`: WF, WZ, WY of a_n k_n times F, Z, k Y
-#: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``) and WX of
-#: a_n k_n times X / k (the cross-beam correction, ``SectionDecay.moments``)
-DECAY_BLOCKS = 10
+#: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``) and WX_a,
+#: WX_b of a_n k_n times X / k at the two cross-beam nodes (:func:`crossbeam_node`)
+DECAY_BLOCKS = 11
+
+
+def crossbeam_node(sin_beta: float) -> float:
+    """The first of the two nodes in sin^2 of the relative wave heading (the second is 1, beam
+    waves) at which :func:`decay_factors` gives the cross-beam correction X of
+    ``SectionDecay.moments``: sin^2 of the course's heading, or 1/2 where that is within 0.01 of 0
+    or 1. A 6-DOF record's ship yaws, and X depends on the relative heading (about as its sine
+    squared in long waves), so ``_kernels_6dof._station_wave`` interpolates X in u = sin^2 on the
+    nodes 0 (where X = 0), u_a and 1 (quadratic; exact at the course's heading, so the held-yaw
+    case equals the 3-DOF model; at u = 0.0076 between nodes 0.25 and 1 the interpolation error is
+    about 2.7e-4 (k b / 2)^4 of X). The same arithmetic as the kernel's."""
+    ua = sin_beta * sin_beta
+    return 0.5 if ua < 0.01 or ua > 0.99 else ua
 
 
 def decay_factors(amp, k, decay, sin_beta: float = 0.0):
@@ -197,22 +210,20 @@ def decay_factors(amp, k, decay, sin_beta: float = 0.0):
     -sum_n a_n k_n^2 Y_i(k_n) cos psi_n need
     a_n k_n (F_i, Z_i, k_n Y_i)(k_n) ~ sum_j (WF_ij, WZ_ij, WY_ij) C_nj, and the heeled section's
     six terms a_n k_n w_i(k_n) ~ sum_j W_ij C_nj (w of ``SectionDecay.heel_weights``) and the
-    cross-beam correction a_n X_i(k_n) ~ sum_j WX_ij C_nj (X of ``SectionDecay.moments`` for waves of
-    heading sine ``sin_beta``; the 6-DOF records take it at the course's heading): one
+    cross-beam correction a_n X_i(k_n) ~ sum_j WX_ij C_nj (X of ``SectionDecay.moments`` at the two
+    nodes of :func:`crossbeam_node` for the course's heading sine ``sin_beta``): one
     truncated singular value decomposition of the (component, ``DECAY_BLOCKS`` x station) matrix
-    of the nine, each station's column scaled to unit norm. Its r is the least for which every column's residual norm over the components (the
+    of the eleven, each station's column scaled to unit norm, the cross-beam columns to the norm of
+    the planar waterline's linear vertical force a_n (b_i - k_n A_i F_i) where that is larger (the
+    correction is then carried to 1 % of the station's vertical force, not of itself). Its r is the least for which every column's residual norm over the components (the
     standard deviation of the term's error over random phases) is within ``DECAY_RANK_TOLERANCE`` of
-    the column's norm, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
+    the column's scale, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
     is not enough). Returns the line factors C (nc, r) and the station
-    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY, the six heeled ones and WX, each factor's sign
+    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY, the six heeled ones, WX_a and WX_b, each factor's sign
     chosen so that its weights WF sum to >= 0 (one regular wave's weights then do not depend on
     its amplitude's sign)."""
-    amp = np.asarray(amp, float)
-    k = np.asarray(k, float)
-    F, Z, Y, X = decay.moments(k, sin_beta)  # (nst, nc) each
-    nst = F.shape[0]
-    M = np.concatenate([F, Z, Y * k[None, :], *decay.heel_weights(k, (F, Z, Y)), X / k[None, :]]).T * (amp * k)[:, None]
-    norm = np.sqrt(np.sum(M**2, axis=0))
+    M, norm, full = decay_matrix(amp, k, decay, sin_beta)
+    nst = len(decay.total)
     live = norm > 0
     Mn = M / np.where(live, norm, 1.0)
     # the leading singular triplets from the eigenvectors of the smaller Gram matrix (a fifth of a
@@ -230,9 +241,9 @@ def decay_factors(amp, k, decay, sin_beta: float = 0.0):
         kept = np.zeros(M.shape[1])
         for r in range(1, min(DECAY_RANK_MAX, len(S)) + 1):
             kept += SVt[r - 1] ** 2
-            if np.all(1.0 - kept[live] <= DECAY_RANK_TOLERANCE**2):
+            if np.all(full[live] - kept[live] <= DECAY_RANK_TOLERANCE**2):
                 break
-        worst = float(np.sqrt(max(np.max(1.0 - kept[live]), 0.0)))
+        worst = float(np.sqrt(max(np.max(full[live] - kept[live]), 0.0)))
         if worst > DECAY_RANK_TOLERANCE and r < len(S):
             warnings.warn(f"pressure-decay factorisation: rank {r} (DECAY_RANK_MAX) leaves a {100 * worst:.2g} % "
                           f"error at its worst station, above DECAY_RANK_TOLERANCE {100 * DECAY_RANK_TOLERANCE:g} %",
@@ -249,6 +260,32 @@ def decay_factors(amp, k, decay, sin_beta: float = 0.0):
     flip = np.where(W[:nst].sum(axis=0) < 0, -1.0, 1.0)
     return C * flip, np.ascontiguousarray(np.concatenate([W[b * nst:(b + 1) * nst] * flip
                                                           for b in range(DECAY_BLOCKS)], axis=1))
+
+
+def decay_matrix(amp, k, decay, sin_beta: float = 0.0):
+    """The (component, ``DECAY_BLOCKS`` x station) matrix M that :func:`decay_factors` factorises,
+    its columns' scales (their norms; for the cross-beam blocks at least the norm of the planar
+    vertical force a_n (b_i - k_n A_i F_i)) and the squared norm of each scaled column (1 but where
+    the cross-beam scale is the larger)."""
+    amp = np.asarray(amp, float)
+    k = np.asarray(k, float)
+    ua = crossbeam_node(float(sin_beta))
+    F, Z, Y, Xa = decay.moments(k, np.sqrt(ua))  # (nst, nc) each
+    Xb = decay.crossbeam(k, 1.0)
+    nst = F.shape[0]
+    ak = (amp * k)[:, None]
+    M = np.concatenate([F, Z, Y * k[None, :], *decay.heel_weights(k, (F, Z, Y)), Xa / k[None, :],
+                        Xb / k[None, :]]).T * ak
+    norm = np.sqrt(np.sum(M**2, axis=0))
+    full = np.ones_like(norm)
+    vertical = np.sqrt(np.sum((amp[:, None] * (decay.waterline_breadth[None, :] - k[:, None] * decay.total[None, :]
+                                                * F.T)) ** 2, axis=0))
+    for b in (DECAY_BLOCKS - 2, DECAY_BLOCKS - 1):
+        cols = slice(b * nst, (b + 1) * nst)
+        own = norm[cols].copy()
+        norm[cols] = np.maximum(own, vertical)
+        full[cols] = np.where(norm[cols] > 0, (own / np.where(norm[cols] > 0, norm[cols], 1.0)) ** 2, 1.0)
+    return M, norm, full
 
 
 class LineWaves:
@@ -270,8 +307,9 @@ class LineWaves:
         P_j = -g sum_n C_nj cos psi_n, its slope dP_j/dxi, Q_j = -sum_n C_nj sin psi_n and dQ_j/dxi;
         at station i, dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j,
         T_yy = -sum_j WY_ij Q_j and U_yy = sum_j WY_ij P_j / g, the heeled section's terms and the
-        cross-beam correction W = -sum_j WX_ij P_j / g, with ``decay_weights`` (nst,
-        ``DECAY_BLOCKS`` r) = (WF, WZ, WY, W_1 ... W_6, WX).
+        cross-beam correction W = -sum_j (L_a WX_a,ij + L_b WX_b,ij) P_j / g (the nodes' weights at the
+        instantaneous relative heading, :func:`crossbeam_node`), with ``decay_weights`` (nst,
+        ``DECAY_BLOCKS`` r) = (WF, WZ, WY, W_1 ... W_6, WX_a, WX_b).
     """
 
     def __init__(self, amp, omega, phase, heading_deg: float, speed: float, decay=None):
