@@ -832,24 +832,21 @@ def _sinc(x):
 
 
 @njit(cache=True)
-def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y, sb, breadth, beam_wl, X):
+def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y, sbs, breadth, beam_wl, X):
     """Fill F, Z, Y (nst, nc) with the sections' area averages of e^(k z), (z - z_c) e^(k z) and
     y^2 e^(k z) from their horizontal slices (``model.SectionDecay``: half heights (nst,), slice
     mid-depths, areas, centroid offsets, int y^2 dA and its upper-minus-lower halves (nst, ns), section
     areas (nst,)); a dry station (area 0) gets F = 1, Z = Y = 0. One pass over the slices per station
-    and wave number (``SectionDecay.moments`` documents the slice integrals). With ``X`` (nst, nc)
-    not empty, also the cross-beam correction of the linear vertical FK force per unit length [m^2]
-    for waves of heading sin(beta) ``sb`` (``SectionDecay.crossbeam``): b (sinc(k_y b / 2) - 1)
+    and wave number (``SectionDecay.moments`` documents the slice integrals). With ``X`` (nb, nst, nc),
+    also the cross-beam correction of the linear vertical FK force per unit length [m^2]
+    for waves of heading sines ``sbs`` (nb,) (``SectionDecay.moments``): b (sinc(k_y b / 2) - 1)
     - k int e^(k z) (sinc(k_y B / 2) - 1) dA, k_y = k sin(beta), b the calm waterline breadth
-    ``beam_wl`` (nst,) and B each slice's breadth ``breadth`` (nst, ns); 0 at a dry station."""
+    ``beam_wl`` (nst,) and B each slice's breadth ``breadth`` (nst, ns); 0 at a dry station and in
+    head and following waves."""
     nst, ns = area.shape
     nc = k.shape[0]
-    cross = X.shape[0] > 0
-    if cross and sb == 0.0:  # head and following waves: none
-        cross = False
-        for i in range(nst):
-            for n in range(nc):
-                X[i, n] = 0.0
+    nb = X.shape[0]
+    xb = np.zeros(nb)  # int e^(k z) (sinc(k_y B / 2) - 1) dA for each heading
     c = np.empty(ns)  # 3 (slice centroid - mid-height) / h of a station's slices
     for i in range(nst):
         a_i = total[i]
@@ -858,8 +855,8 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                 F[i, n] = 1.0
                 Z[i, n] = 0.0
                 Y[i, n] = 0.0
-                if cross:
-                    X[i, n] = 0.0
+                for b in range(nb):
+                    X[b, i, n] = 0.0
             continue
         h = half_height[i]
         zc = 0.0
@@ -894,8 +891,6 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
             f = 0.0
             first = 0.0
             y = 0.0
-            xb = 0.0  # int e^(k z) (sinc(k_y B / 2) - 1) dA
-            half_ky = 0.5 * k[n] * sb
             # the recurrence only where its factor is finite and e^(k z_m) far from underflow (wave
             # numbers of centimetre waves; exp at every slice there)
             rec = even and 2.0 * h * k[n] < 700.0
@@ -911,10 +906,26 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                 f += ea * w
                 first += ea * (depth[i, j] * w + h * (s2 + c[j] * d2))
                 y += e * (yy[i, j] * s1 + 2.0 * yy_tilt[i, j] * s2)
-                if cross:
-                    xb += ea * w * (_sinc(half_ky * breadth[i, j]) - 1.0)
+            if nb > 0:
+                # the cross-beam integrals in a second pass over the slices (the same e^(k z_m)),
+                # so that the pass above stays as fast without them
+                for b in range(nb):
+                    xb[b] = 0.0
+                e = 1.0
+                for j in range(ns):
+                    if not rec or (j & 15) == 0 or e < 1e-290:
+                        e = math.exp(depth[i, j] * k[n])
+                    else:
+                        e *= step
+                    eaw = e * area[i, j] * (s1 + c[j] * s2)
+                    for b in range(nb):
+                        if sbs[b] != 0.0:
+                            xb[b] += eaw * (_sinc(0.5 * k[n] * sbs[b] * breadth[i, j]) - 1.0)
             F[i, n] = f / a_i
             Z[i, n] = first / a_i - zc * F[i, n]
             Y[i, n] = y / a_i
-            if cross:
-                X[i, n] = beam_wl[i] * (_sinc(half_ky * beam_wl[i]) - 1.0) - k[n] * xb
+            for b in range(nb):
+                if sbs[b] == 0.0:  # head and following waves: none
+                    X[b, i, n] = 0.0
+                else:
+                    X[b, i, n] = beam_wl[i] * (_sinc(0.5 * k[n] * sbs[b] * beam_wl[i]) - 1.0) - k[n] * xb[b]

@@ -333,13 +333,14 @@ class SectionDecay:
         """F_i(k_n) (nst, nc) for wave numbers ``k`` (nc,) [1/m]; 1 at a dry station."""
         return self.moments(k)[0]
 
-    def crossbeam(self, k, sin_beta: float) -> np.ndarray:
+    def crossbeam(self, k, sin_beta) -> np.ndarray:
         """The cross-beam correction X_i(k_n) (nst, nc) [m^2] of the linear vertical FK force per
         unit length for long-crested waves of heading sin(beta) ``sin_beta`` (:meth:`moments`,
-        which computes it in the same pass when given ``sin_beta``)."""
+        which computes it in the same pass when given ``sin_beta``; a sequence of sines gives
+        (nb, nst, nc))."""
         return self.moments(k, sin_beta)[3]
 
-    def moments(self, k, sin_beta: float | None = None) -> tuple[np.ndarray, ...]:
+    def moments(self, k, sin_beta=None) -> tuple[np.ndarray, ...]:
         """(F_i(k_n), Z_i(k_n), Y_i(k_n)), each (nst, nc), for wave numbers ``k`` (nc,) [1/m]: the
         area averages of e^(k z) [-], of (z - z_c) e^(k z) [m] (z_c the section's centroid) and of
         y^2 e^(k z) [m^2] (F = 1, Z = Y = 0 at a dry station). Z / F is the height of the horizontal
@@ -351,7 +352,8 @@ class SectionDecay:
         error is second order in k h, the slice's half height h; the slice's total at its mid-height
         alone was first order, 1.3e-2 on the DTC at k = 2 /m).
 
-        With ``sin_beta`` (the waves' heading's sine) a fourth array, X_i(k_n) [m^2]: the linear
+        With ``sin_beta`` (the waves' heading's sine, or a sequence of them: then (nb, nst, nc)) a
+        fourth array, X_i(k_n) [m^2]: the linear
         vertical FK force's part that the sections' planar waterline leaves out. Gauss's theorem on
         a section in a long-crested wave of wave number k and k_y = k sin(beta) across the ship
         gives the force per unit length rho g a cos(psi) (b sinc(k_y b / 2) -
@@ -368,11 +370,13 @@ class SectionDecay:
         k = np.ascontiguousarray(np.atleast_1d(np.asarray(k, float)))
         nst = self.slice_area.shape[0]
         F, Z, Y = (np.empty((nst, len(k))) for _ in range(3))
-        X = np.empty((nst if sin_beta is not None else 0, len(k)))
+        sbs = np.atleast_1d(np.asarray([] if sin_beta is None else sin_beta, float))
+        X = np.empty((len(sbs), nst, len(k)))
         K._decay_moments(k, self.half_height, self.slice_depth, self.slice_area, self.slice_offset, self.slice_yy,
-                         self.slice_yy_tilt, self.total, F, Z, Y, 0.0 if sin_beta is None else float(sin_beta),
-                         self.slice_breadth, self.waterline_breadth, X)
-        return (F, Z, Y) if sin_beta is None else (F, Z, Y, X)
+                         self.slice_yy_tilt, self.total, F, Z, Y, sbs, self.slice_breadth, self.waterline_breadth, X)
+        if sin_beta is None:
+            return F, Z, Y
+        return F, Z, Y, (X[0] if np.ndim(sin_beta) == 0 else X)
 
 
 def section_decay(sec: Sections, h0: float, th0: float) -> SectionDecay:

@@ -105,14 +105,16 @@ Small waves vs the linear frequency-domain solution (6 rows, consistency)
 d2phi/dzdt option (3 rows, independent; tolerance 4 %)
     lambda = L_wl, H/lambda = 1/50, stern quartering: heave and pitch first harmonics (last 5
     encounter periods of 160 s, dt 0.1 s) with ``dphi_dzdt=True`` vs pressure integration *with*
-    the exponential decay. Measured: barge heave +3.67 %, pitch +3.03 % (without the option
-    +51.2 % / +51.5 %), insensitive to dt (0.05 s) and to the fitting window (3-8 periods);
-    dtmb5415 +2.56 / +1.51 %. README: within 4 %. SKIPPED as the volume-vs-pressure rows.
+    the exponential decay. Measured (2026-12-07, with the decay's cross-beam correction,
+    ``SectionDecay.moments``' X): barge heave +0.28 %, pitch +0.11 % (before it +3.67 / +3.03 %;
+    without the option +51.2 % / +51.5 %), insensitive to dt (0.05 s) and to the fitting window
+    (3-8 periods); dtmb5415 +1.19 / +0.81 %, trawler -0.65 / -0.49 % (+8.9 / +6.8 % before). README:
+    within 4 %. SKIPPED as the volume-vs-pressure rows.
     A third row: heave in beam waves at twice the roll frequency (lambda 2 pi g / (2 w_phi)^2,
     H/lambda = 1/500, below the height that starts parametric roll there), the DSA's kernel;
-    measured barge +12.0 % (without the option +82 %; with the curved waterline too -7.9 %),
-    dtmb5415 +16.7 % (curved -9.2 %): the planar waterline across the beam, 1 / sinc(k B / 2) - 1
-    = +12 % on the barge, is what stays. FAIL at 4 %.
+    measured barge +0.11 % (without the option +82 %; with the curved waterline too -7.9 %),
+    dtmb5415 +0.22 %, trawler +0.30 %. Before the cross-beam correction the planar waterline
+    across the beam, 1 / sinc(k B / 2) - 1 = +12 % on the barge, stayed: +12.0 / +18.3 / +40.4 %.
 Pressure decay's roll moment (1 row, independent; tolerance 2 %)
     Beam waves at the natural roll frequency (lambda 2 pi g / w_phi^2, H/lambda 1/500), ship held
     at its calm-water equilibrium: the first harmonic of the roll moment about G of the kernel
@@ -139,8 +141,9 @@ The diffraction option's excitation (2 rows, independent; tolerance 4 %)
     same on the panels (:func:`hybrid_excitation`; every ship with a BEM mesh, whatever its
     option). The reference text gives the kernel's FK alone against Capytaine's and |diffraction +
     sway reaction| / |FK|. Measured: roll barge +1.8 %, dtmb5415 +2.8 %, trawler +2.5 % (FK alone
-    +1.3, +2.5, +2.3 %); heave +11.7 % (barge), +10.7 % (dtmb5415), +18.6 % (trawler): the planar
-    waterline's FK excess in short beam waves (FK alone +12, +18, +39 %). SKIPPED without a BEM mesh (Wigley; the DTC's is over the BEM's 20,000
+    +1.3, +2.5, +2.3 %); heave -0.04 % (barge), -0.02 % (dtmb5415), +0.02 % (trawler), FK alone
+    within 0.05 % of Capytaine's with the decay's cross-beam correction (before it +11.7, +10.7,
+    +18.6 %: the planar waterline's FK excess in short beam waves, FK alone +12, +18, +39 %). SKIPPED without a BEM mesh (Wigley; the DTC's is over the BEM's 20,000
     triangles) or where the panels do not resolve the wave at 2 w_phi.
 Long head waves (3 rows, consistency)
     lambda = 20 L, H/lambda = 1/500, head seas (:func:`stabflow.dynamics.rao.rao_sweep`): heave / a
