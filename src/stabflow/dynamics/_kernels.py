@@ -831,6 +831,15 @@ def _sinc(x):
     return math.sin(x) / x
 
 
+@njit(cache=True, inline="always")
+def _slice_exp(e, j, rec, step, z, k):
+    """e^(k z) at slice ``j`` (mid-depth ``z``) from the previous slice's ``e``: by the recurrence
+    factor ``step`` (``rec``), reset to the exact value every 16 slices and near underflow."""
+    if not rec or (j & 15) == 0 or e < 1e-290:
+        return math.exp(z * k)
+    return e * step
+
+
 @njit(cache=True)
 def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y, sbs, breadth, beam_wl, X):
     """Fill F, Z, Y (nst, nc) with the sections' area averages of e^(k z), (z - z_c) e^(k z) and
@@ -897,10 +906,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
             step = math.exp(2.0 * h * k[n]) if rec else 1.0
             e = 1.0
             for j in range(ns):
-                if not rec or (j & 15) == 0 or e < 1e-290:
-                    e = math.exp(depth[i, j] * k[n])
-                else:
-                    e *= step
+                e = _slice_exp(e, j, rec, step, depth[i, j], k[n])
                 ea = e * area[i, j]
                 w = s1 + c[j] * s2
                 f += ea * w
@@ -913,10 +919,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                     xb[b] = 0.0
                 e = 1.0
                 for j in range(ns):
-                    if not rec or (j & 15) == 0 or e < 1e-290:
-                        e = math.exp(depth[i, j] * k[n])
-                    else:
-                        e *= step
+                    e = _slice_exp(e, j, rec, step, depth[i, j], k[n])
                     eaw = e * area[i, j] * (s1 + c[j] * s2)
                     for b in range(nb):
                         if sbs[b] != 0.0:
