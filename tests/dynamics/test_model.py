@@ -130,7 +130,6 @@ def test_box_heave_force_in_beam_waves_against_linear_theory(barge, wavelength):
     fz = first_harmonic(t, np.array([model.loads(tt, h0, 0.0, th0)[2] for tt in t]), we)[0]
     planar = ship.rho * G * a * L * b * np.exp(-k * T)
     assert abs(fz - exact) < 1e-8 * exact, (fz / exact - 1, planar / exact)
-    assert planar / exact == pytest.approx(1.0 / np.sinc(k * b / 2 / np.pi))
 
 
 def _polygon_yy(sec, i, zw, th0, k):
@@ -227,7 +226,7 @@ def test_section_decay_against_the_exact_area_average(name):
     cross = np.trapezoid(e * (2.0 * np.sin(np.outer(k * sb, yh)) / (k * sb)[:, None] - 2.0 * yh[None, :]), zz, axis=1)
     exact_x = b * (np.sinc(k * sb * b / 2 / np.pi) - 1.0) - k * cross
     assert np.all(np.abs(X - exact_x) < 1e-4 * b), np.abs(X - exact_x) / b
-    assert np.all(dec.moments(k, 0.0)[3] == 0.0) and np.all(dec.crossbeam(k, 0.0) == 0.0)
+    assert np.all(dec.moments(k, 0.0)[3] == 0.0)
     assert np.all(dec(k)[:, 0] <= 1.0) and np.all(np.diff(dec(k), axis=1) < 0)
 
 

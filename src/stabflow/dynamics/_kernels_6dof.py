@@ -27,6 +27,7 @@ import math
 import numpy as np
 from numba import njit
 
+from stabflow.waves._kernels import _crossbeam_node
 from stabflow.waves.synthesis import DECAY_BLOCKS
 from stabflow.dynamics._kernels import (DECAY_COLUMNS, N_STATE, P_ADDED_MASS, P_COS_BETA, P_G, P_RHO, P_SIN_BETA,
                                         P_XG, P_ZG, S_PITCH, S_RATE, S_ROLL, S_X, S_Y, S_YAW, S_Z, _fkhs,
@@ -208,14 +209,15 @@ def _station_wave(xs, p, m, s, line, decay, wave):
         for i in range(xs.shape[0]):
             wave[i, 2] = 0.0
     inside = True
-    # the cross-beam correction's interpolation weights at the relative heading's u = sin^2 on the
-    # nodes 0, u_a, 1 (``waves.synthesis.crossbeam_node``: the same arithmetic)
-    ua = sb * sb
-    if ua < 0.01 or ua > 0.99:
-        ua = 0.5
-    u = math.sin(math.atan2(sb, cb) - s[S_YAW]) ** 2
-    la = u * (u - 1.0) / (ua * (ua - 1.0))
-    lb = u * (u - ua) / (1.0 - ua)
+    la = 0.0
+    lb = 0.0
+    if nr > 0:
+        # the cross-beam correction's interpolation weights at the relative heading's u = sin^2 on
+        # the nodes 0, u_a, 1 (``waves.synthesis.crossbeam_node``)
+        ua = _crossbeam_node(sb)
+        u = math.sin(math.atan2(sb, cb) - s[S_YAW]) ** 2
+        la = u * (u - 1.0) / (ua * (ua - 1.0))
+        lb = u * (u - ua) / (1.0 - ua)
     for i in range(xs.shape[0]):
         d = ct * (xs[i] - xg) + ox
         xi = (x0 + cy * d) * cb + (y0 + sy * d) * sb

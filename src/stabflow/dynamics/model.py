@@ -333,13 +333,6 @@ class SectionDecay:
         """F_i(k_n) (nst, nc) for wave numbers ``k`` (nc,) [1/m]; 1 at a dry station."""
         return self.moments(k)[0]
 
-    def crossbeam(self, k, sin_beta) -> np.ndarray:
-        """The cross-beam correction X_i(k_n) (nst, nc) [m^2] of the linear vertical FK force per
-        unit length for long-crested waves of heading sin(beta) ``sin_beta`` (:meth:`moments`,
-        which computes it in the same pass when given ``sin_beta``; a sequence of sines gives
-        (nb, nst, nc))."""
-        return self.moments(k, sin_beta)[3]
-
     def moments(self, k, sin_beta=None) -> tuple[np.ndarray, ...]:
         """(F_i(k_n), Z_i(k_n), Y_i(k_n)), each (nst, nc), for wave numbers ``k`` (nc,) [1/m]: the
         area averages of e^(k z) [-], of (z - z_c) e^(k z) [m] (z_c the section's centroid) and of

@@ -1,9 +1,18 @@
-"""Numba kernels (private): time factors of the wave components by phasor recurrence."""
+"""Numba kernels (private): time factors of the wave components by phasor recurrence, and the
+cross-beam correction's first heading node (``synthesis.crossbeam_node``)."""
 
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
+
+
+@njit(cache=True)
+def _crossbeam_node(sin_beta):
+    """sin^2 of the course's heading, or 1/2 within 0.01 of 0 or 1 (``synthesis.crossbeam_node``;
+    ``dynamics._kernels_6dof._station_wave`` interpolates on it)."""
+    ua = sin_beta * sin_beta
+    return 0.5 if ua < 0.01 or ua > 0.99 else ua
 
 
 @njit(cache=True, nogil=True)

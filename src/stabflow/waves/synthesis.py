@@ -25,7 +25,7 @@ import warnings
 
 import numpy as np
 
-from stabflow.waves._kernels import _equally_spaced, _line_coefficients, _trig_table
+from stabflow.waves._kernels import _crossbeam_node, _equally_spaced, _line_coefficients, _trig_table
 
 from stabflow.constants import G
 
@@ -195,9 +195,8 @@ def crossbeam_node(sin_beta: float) -> float:
     squared in long waves), so ``_kernels_6dof._station_wave`` interpolates X in u = sin^2 on the
     nodes 0 (where X = 0), u_a and 1 (quadratic; exact at the course's heading, so the held-yaw
     case equals the 3-DOF model; at u = 0.0076 between nodes 0.25 and 1 the interpolation error is
-    about 2.7e-4 (k b / 2)^4 of X). The same arithmetic as the kernel's."""
-    ua = sin_beta * sin_beta
-    return 0.5 if ua < 0.01 or ua > 0.99 else ua
+    about 2.7e-4 (k b / 2)^4 of X). The kernel calls the same function (``_kernels._crossbeam_node``)."""
+    return float(_crossbeam_node(float(sin_beta)))
 
 
 def decay_factors(amp, k, decay, sin_beta: float = 0.0):
