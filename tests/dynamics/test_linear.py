@@ -79,32 +79,32 @@ def _barge_decay_models(barge, wavelength, heading, steepness, waterline="planar
             h0, th0, float(W[1][0]))
 
 
-@pytest.mark.parametrize("wavelength,heading", [(40.0, 45.0), (120.0, 150.0)])
+@pytest.mark.parametrize("wavelength,heading", [(40.0, 45.0), (120.0, 150.0), (30.0, 90.0)])
 def test_kernel_loads_with_pressure_decay_against_pressure_integration(barge, wavelength, heading):
     """All six first-harmonic FK loads of the kernel with the pressure decay (``SectionDecay``: the
-    vertical term with the cross-beam correction, the area-averaged horizontal slope with its lever,
-    the vertical and horizontal gradients' variation across the beam) on the barge held at
+    vertical term, the area-averaged horizontal slope with its lever, the vertical and horizontal
+    gradients' variation across the beam, each with its cross-beam remainder) on the barge held at
     equilibrium in oblique regular waves, H/lambda 1/500, against pressure integration with the
-    e^(k z) decay on the box mesh: the vertical force and the pitch moment on the exact wave surface
-    within 1.5 % (the cross-beam correction; measured 0.56 / 1.05 % at lambda 40 m, 45 degree,
-    0.10 / 0.04 % at 120 m, 150 degree: the mesh's and the stations' resolution of the oblique
-    wave along the ship), the surge and sway forces, the roll and yaw moments within 1 % of pressure
-    integration with the phase linearised across the beam (the kernel's assumption for them;
-    measured 0.03-0.65 %; without the horizontal gradient's cross-beam term the yaw moment was 6.5 %
-    and 2.5 % off). Against the linearised phase the vertical force and pitch moment are now 19 % and
-    20 % off at lambda 40 m, as the kernel's were against the exact surface before the correction."""
-    kernel, pressure, h0, th0, we = _barge_decay_models(barge, wavelength, heading, 1.0 / 500.0)
-    exact = _barge_decay_models(barge, wavelength, heading, 1.0 / 500.0, waterline="exact")[1]
+    e^(k z) decay on the box mesh and the exact wave surface: the forces and the pitch and yaw
+    moments within 1.5 % (measured at lambda 40 m, 45 degree: surge 0.24, sway 0.48, heave 0.56,
+    pitch 0.49, yaw 0.41 %; at 120 m, 150 degree 0.04-0.10 %; in beam waves of 30 m, sway 0.17,
+    heave 0.20 %: the mesh's and the stations' resolution of the oblique wave), the roll moment
+    within 4 % (3.1, 0.22 and 1.77 %: on this wall-sided box the waterline's and the decaying
+    pressure's roll moments nearly cancel). With the phase linearised across the beam, as the
+    sections' planar waterline took it before the cross-beam remainders (2026-12-07), all six are
+    19 % off at lambda 40 m, 45 degree (the roll moment 150 %), and in beam waves of 30 m the sway
+    force 59 % and the roll moment 154 %. In beam waves there is no surge force, pitch or yaw
+    moment to compare (round-off of the fore-aft symmetric mesh)."""
+    kernel, pressure, h0, th0, we = _barge_decay_models(barge, wavelength, heading, 1.0 / 500.0, waterline="exact")
     t = np.arange(64) * 2 * np.pi / we / 64
     amp = {}
-    for key, model in (("kernel", kernel), ("pressure", pressure), ("exact", exact)):
+    for key, model in (("kernel", kernel), ("exact", pressure)):
         L = np.array([model.loads(tt, h0, 0.0, th0) for tt in t])
         amp[key] = np.array([a * np.exp(1j * p) for a, p in (first_harmonic(t, L[:, j], we) for j in range(6))])
-    ref = amp["pressure"].copy()
-    ref[[2, 4]] = amp["exact"][[2, 4]]
-    err = np.abs(amp["kernel"] - ref) / np.abs(ref)
-    assert np.all(err[[0, 1, 3, 5]] < 0.01), err
-    assert np.all(err[[2, 4]] < 0.015), err
+    err = np.abs(amp["kernel"] - amp["exact"]) / np.abs(amp["exact"])
+    others = [1, 2] if heading == 90.0 else [0, 1, 2, 4, 5]
+    assert np.all(err[others] < 0.015), err
+    assert err[3] < 0.04, err
 
 
 @pytest.mark.parametrize("wavelength,heading", [(60.0, 90.0), (80.0, 60.0)])

@@ -105,12 +105,12 @@ def test_station_wave_at_moving_positions_against_direct_synthesis(trawler):
     for flag, (X, Y) in ((1.0, placed), (0.0, axis.T)):
         m[K6.M_KEEL_LINE] = flag
         wave = np.empty((len(model.sec.x), K6.WAVE_BUFFER))
-        assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], none, wave)
+        assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], none, 0.0, 0.0, wave)
         _check_station_wave(wave, X, Y, amp, w, ph)
     # the planar waterline leaves the columns of the decay and eta_xixi as they were, the others the same
     m[K6.M_CURVED] = 0.0
     planar = np.full_like(wave, 7.0)
-    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], none, planar)
+    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[3], none, 0.0, 0.0, planar)
     assert np.all(planar[:, 2:K6.U_COLUMN] == 7.0)
     assert np.array_equal(planar[:, [0, 1, K6.U_COLUMN]], wave[:, [0, 1, K6.U_COLUMN]])
 
@@ -156,7 +156,8 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     s = model.s0.copy()
     s[K.S_X], s[K.S_Y], s[K.S_YAW] = 7.3, -4.1, np.radians(25.0)
     wave = np.empty((len(sec.x), K6.WAVE_BUFFER))
-    assert K6._station_wave(sec.x, model.p, m, s, ltab[3], lw.decay_weights, wave)
+    la, lb = K6._crossbeam_weights(model.p, m, s)
+    assert K6._station_wave(sec.x, model.p, m, s, ltab[3], lw.decay_weights, la, lb, wave)
     xg = model.p[K.P_XG]
     d = sec.x - xg
     X, Y = s[K.S_X] + xg + np.cos(s[K.S_YAW]) * d, s[K.S_Y] + np.sin(s[K.S_YAW]) * d
@@ -166,12 +167,14 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     F, Z, Y = model.decay.moments(k)
     # the cross-beam correction at the relative heading beta - psi = 5 degree, interpolated on the
     # nodes sin^2 = 0, 0.25 (the course's 30 degree) and 1
-    Xb = model.decay.moments(k, np.sin(b - s[K.S_YAW]))[3]
+    _, _, _, Xb, (dF, dZ, dYr, dYy) = model.decay.moments(k, np.sin(b - s[K.S_YAW]))
     assert np.max(np.abs(Xb)) > 1e-4 * np.max(model.decay.total)  # the correction is there to read
-    for col, exact in ((2, (-G * amp * k * F * np.cos(psi)).sum(1)), (3, (-amp * k * F * np.sin(psi)).sum(1)),
+    assert np.max(np.abs(dYr)) > 1e-3 * np.max(np.abs(Y))  # and the remainders (0.5 % of Y at 5 degree)
+    for col, exact in ((2, (-G * amp * k * F * np.cos(psi)).sum(1)), (3, (-amp * k * (F + dF) * np.sin(psi)).sum(1)),
                        (13, (amp * Xb * np.cos(psi)).sum(1)),
-                       (4, (-amp * k * Z * np.sin(psi)).sum(1)), (5, (amp * k * k * Y * np.sin(psi)).sum(1)),
-                       (6, (-amp * k * k * Y * np.cos(psi)).sum(1)),
+                       (4, (-amp * k * (Z + dZ) * np.sin(psi)).sum(1)),
+                       (5, (amp * k * k * (Y + dYr) * np.sin(psi)).sum(1)),
+                       (6, (-amp * k * k * (Y + dYy) * np.cos(psi)).sum(1)),
                        *((7 + j, (amp * k * w * (np.cos(psi) if j < 3 else np.sin(psi))).sum(1))
                          for j, w in enumerate(model.decay.heel_weights(k)))):
         assert np.max(np.abs(wave[:, col] - exact)) < 0.02 * np.max(np.abs(exact)), col
@@ -179,10 +182,13 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     one, minus = (line_waves(model, (np.array([a]), w[:1], ph[:1])) for a in (0.5, -0.5))
     assert one.decay_weights.shape == (len(sec.x), DECAY_BLOCKS)
     np.testing.assert_allclose(one.decay_weights, minus.decay_weights, rtol=1e-12)
-    F1, Z1, Y1, X1 = model.decay.moments(k[:1], np.sin(b))
+    F1, Z1, Y1, X1, D1 = model.decay.moments(k[:1], np.sin(b))
+    Xe, De = model.decay.moments(k[:1], 1.0)[3:]
+    k0 = k[0]
+    remainders = [d for q in range(4) for d in ((D1[q], De[q]) if q < 2 else (k0 * D1[q], k0 * De[q]))]
     np.testing.assert_allclose(one.decay_coef[0, 0] * one.decay_weights,
-                               0.5 * k[0] * np.column_stack([F1, Z1, k[0] * Y1, *model.decay.heel_weights(k[:1]),
-                                                             X1 / k[0], model.decay.moments(k[:1], 1.0)[3] / k[0]]),
+                               0.5 * k0 * np.column_stack([F1, Z1, k0 * Y1, *model.decay.heel_weights(k[:1]),
+                                                           X1 / k0, Xe / k0, *remainders]),
                                rtol=1e-10, atol=1e-10)
 
 
@@ -281,14 +287,14 @@ def test_station_wave_on_a_moving_line_table(trawler):
     s[K.S_X] = c * t1 / np.cos(b)  # drifted along x by c t1 in xi
     wave = np.empty((len(model.sec.x), K6.WAVE_BUFFER))
     none = np.zeros((len(model.sec.x), 0))
-    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[12], none, wave)  # row 12: t = 10 + 12 x 0.25 s
+    assert K6._station_wave(model.sec.x, model.p, m, s, ltab[12], none, 0.0, 0.0, wave)  # row 12: t = 10 + 12 x 0.25 s
     X = s[K.S_X] + model.sec.x
     k = w**2 / G
     psi = k * (X * np.cos(b))[:, None] - (w - k * SPEED * np.cos(b)) * (10.0 + t1) + ph
     eta = (amp * np.cos(psi)).sum(1)
     assert np.max(np.abs(wave[:, 0] - eta)) < 2e-3 * np.max(np.abs(eta))
     m[K6.M_XI_RATE] = 0.0
-    assert not K6._station_wave(model.sec.x, model.p, m, s, ltab[12], none, wave)
+    assert not K6._station_wave(model.sec.x, model.p, m, s, ltab[12], none, 0.0, 0.0, wave)
 
 
 # ------------------------------------------------------------------------- constrained case

@@ -824,11 +824,23 @@ def _r1_record_last(rng, nsteps, dt, phi, chol_q, chol_s, q, tab, cap, exc):
 
 
 @njit(cache=True, inline="always")
-def _sinc(x):
-    """sin(x) / x (1 at 0)."""
-    if abs(x) < 1e-4:
-        return 1.0 - x * x / 6.0
-    return math.sin(x) / x
+def _crossbeam_ratios(u):
+    """(sinc(u) - 1, R(u) - 1) for u = k_y B / 2 of a strip of breadth B across a wave of wave
+    number k_y: sinc(u) = sin(u) / u is the strip's mean of cos(k_y y), R(u) = 3 (sin u - u cos u)
+    / u^3 the ratio of int y sin(k_y y) dy to its linearisation k_y int y^2 dy. By their Taylor
+    series (Horner) below |u| 0.5, the last term there about 1e-15 of the first (no cancellation,
+    no sine), else closed form."""
+    x = u * u
+    if x < 0.25:
+        s = -x / 6.0 * (1.0 - x / 20.0 * (1.0 - x / 42.0 * (1.0 - x / 72.0 * (1.0 - x / 110.0 * (1.0 - x / 156.0 * (
+            1.0 - x / 210.0))))))
+        # R - 1 = sum_{n >= 2} (-1)^(n+1) 6 n u^(2n-2) / (2n+1)!: terms' ratio -x n' / (n (2n+2)(2n+3)), n' = n + 1
+        r = -x / 10.0 * (1.0 - x * 3.0 / (2.0 * 6.0 * 7.0) * (1.0 - x * 4.0 / (3.0 * 8.0 * 9.0) * (
+            1.0 - x * 5.0 / (4.0 * 10.0 * 11.0) * (1.0 - x * 6.0 / (5.0 * 12.0 * 13.0) * (
+                1.0 - x * 7.0 / (6.0 * 14.0 * 15.0))))))
+        return s, r
+    sn = math.sin(u)
+    return sn / u - 1.0, 3.0 * (sn - u * math.cos(u)) / (x * u) - 1.0
 
 
 @njit(cache=True, inline="always")
@@ -841,21 +853,25 @@ def _slice_exp(e, j, rec, step, z, k):
 
 
 @njit(cache=True)
-def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y, sbs, breadth, beam_wl, X):
+def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y, sbs, breadth, beam_wl, X, D):
     """Fill F, Z, Y (nst, nc) with the sections' area averages of e^(k z), (z - z_c) e^(k z) and
     y^2 e^(k z) from their horizontal slices (``model.SectionDecay``: half heights (nst,), slice
     mid-depths, areas, centroid offsets, int y^2 dA and its upper-minus-lower halves (nst, ns), section
     areas (nst,)); a dry station (area 0) gets F = 1, Z = Y = 0. One pass over the slices per station
-    and wave number (``SectionDecay.moments`` documents the slice integrals). With ``X`` (nb, nst, nc),
-    also the cross-beam correction of the linear vertical FK force per unit length [m^2]
-    for waves of heading sines ``sbs`` (nb,) (``SectionDecay.moments``): b (sinc(k_y b / 2) - 1)
-    - k int e^(k z) (sinc(k_y B / 2) - 1) dA, k_y = k sin(beta), b the calm waterline breadth
-    ``beam_wl`` (nst,) and B each slice's breadth ``breadth`` (nst, ns); 0 at a dry station and in
-    head and following waves."""
+    and wave number (``SectionDecay.moments`` documents the slice integrals). With ``X`` (nb, nst, nc)
+    and ``D`` (nb, 4, nst, nc), the cross-beam remainders for waves of heading sines ``sbs`` (nb,)
+    (``SectionDecay.moments``), k_y = k sin(beta), b the calm waterline breadth ``beam_wl`` (nst,)
+    and B each slice's breadth ``breadth`` (nst, ns): X = b (sinc(k_y b / 2) - 1) - k int e^(k z)
+    (sinc(k_y B / 2) - 1) dA [m^2], then dF = int e^(k z) (sinc - 1) dA / A, dZ = int (z - z_c)
+    e^(k z) (sinc - 1) dA / A [m], dY_r = dY_y - b^3 (R(k_y b / 2) - 1) / (12 k A) [m^2] and
+    dY_y = int y^2 e^(k z) (R(k_y B / 2) - 1) dA / A [m^2] (``_crossbeam_ratios``), in this order
+    along D's second axis; all 0 at a dry station and in head and following waves."""
     nst, ns = area.shape
     nc = k.shape[0]
     nb = X.shape[0]
     xb = np.zeros(nb)  # int e^(k z) (sinc(k_y B / 2) - 1) dA for each heading
+    zb = np.zeros(nb)  # int z e^(k z) (sinc(k_y B / 2) - 1) dA
+    yb = np.zeros(nb)  # int y^2 e^(k z) (R(k_y B / 2) - 1) dA
     c = np.empty(ns)  # 3 (slice centroid - mid-height) / h of a station's slices
     for i in range(nst):
         a_i = total[i]
@@ -866,6 +882,8 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                 Y[i, n] = 0.0
                 for b in range(nb):
                     X[b, i, n] = 0.0
+                    for q in range(4):
+                        D[b, q, i, n] = 0.0
             continue
         h = half_height[i]
         zc = 0.0
@@ -913,22 +931,40 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                 first += ea * (depth[i, j] * w + h * (s2 + c[j] * d2))
                 y += e * (yy[i, j] * s1 + 2.0 * yy_tilt[i, j] * s2)
             if nb > 0:
-                # the cross-beam integrals in a second pass over the slices (the same e^(k z_m)),
-                # so that the pass above stays as fast without them
+                # the cross-beam integrals in a second pass over the slices (the same e^(k z_m) and
+                # slice integrals), so that the pass above stays as fast without them
                 for b in range(nb):
                     xb[b] = 0.0
+                    zb[b] = 0.0
+                    yb[b] = 0.0
                 e = 1.0
                 for j in range(ns):
                     e = _slice_exp(e, j, rec, step, depth[i, j], k[n])
-                    eaw = e * area[i, j] * (s1 + c[j] * s2)
+                    ea = e * area[i, j]
+                    w = s1 + c[j] * s2
+                    eaw = ea * w
+                    eaz = ea * (depth[i, j] * w + h * (s2 + c[j] * d2))
+                    eyy = e * (yy[i, j] * s1 + 2.0 * yy_tilt[i, j] * s2)
                     for b in range(nb):
                         if sbs[b] != 0.0:
-                            xb[b] += eaw * (_sinc(0.5 * k[n] * sbs[b] * breadth[i, j]) - 1.0)
+                            ds, dr = _crossbeam_ratios(0.5 * k[n] * sbs[b] * breadth[i, j])
+                            xb[b] += eaw * ds
+                            zb[b] += eaz * ds
+                            yb[b] += eyy * dr
             F[i, n] = f / a_i
             Z[i, n] = first / a_i - zc * F[i, n]
             Y[i, n] = y / a_i
             for b in range(nb):
                 if sbs[b] == 0.0:  # head and following waves: none
                     X[b, i, n] = 0.0
+                    for q in range(4):
+                        D[b, q, i, n] = 0.0
                 else:
-                    X[b, i, n] = beam_wl[i] * (_sinc(0.5 * k[n] * sbs[b] * beam_wl[i]) - 1.0) - k[n] * xb[b]
+                    bw = beam_wl[i]
+                    ds, dr = _crossbeam_ratios(0.5 * k[n] * sbs[b] * bw)
+                    X[b, i, n] = bw * ds - k[n] * xb[b]
+                    df = xb[b] / a_i
+                    D[b, 0, i, n] = df
+                    D[b, 1, i, n] = zb[b] / a_i - zc * df
+                    D[b, 2, i, n] = yb[b] / a_i - bw * bw * bw * dr / (12.0 * k[n] * a_i)
+                    D[b, 3, i, n] = yb[b] / a_i

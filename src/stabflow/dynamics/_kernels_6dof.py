@@ -136,8 +136,29 @@ def _hermite_slope(y0, d0, y1, d1, t, h):
     return (6.0 * t2 - 6.0 * t) * (y0 - y1) / h + (3.0 * t2 - 4.0 * t + 1.0) * d0 + (3.0 * t2 - 2.0 * t) * d1
 
 
+@njit(cache=True, inline="always")
+def _crossbeam_weights(p, m, s):
+    """(l_a, l_b): the weights of the cross-beam terms' two nodes (``waves.synthesis.crossbeam_node``:
+    u_a and 1 in u = sin^2 of the relative heading; the terms vanish at u = 0) at the relative
+    heading beta - psi: quadratic interpolation in u, exact at the course's heading. (0, 0) with
+    the curved waterline, whose parabola carries a part of the cross-beam phase (``_kernels._fkhs``)."""
+    if m[M_CURVED] != 0.0:
+        return 0.0, 0.0
+    sb = p[P_SIN_BETA]
+    ua = _crossbeam_node(sb)
+    u = math.sin(math.atan2(sb, p[P_COS_BETA]) - s[S_YAW]) ** 2
+    return u * (u - 1.0) / (ua * (ua - 1.0)), u * (u - ua) / (1.0 - ua)
+
+
+@njit(cache=True, inline="always")
+def _remainder_weight(decay, i, j, nr, base, block, la, lb):
+    """Station i's weight of factor j for an upright block ``base`` (0 WF, 1 WZ, 2 WY) with its
+    cross-beam remainder's two nodes (blocks ``block`` and ``block + 1``, weighted ``la``, ``lb``)."""
+    return decay[i, base * nr + j] + la * decay[i, block * nr + j] + lb * decay[i, (block + 1) * nr + j]
+
+
 @njit(cache=True)
-def _station_wave(xs, p, m, s, line, decay, wave):
+def _station_wave(xs, p, m, s, line, decay, la, lb, wave):
     """Fill ``wave`` (nst, ``WAVE_BUFFER``) with the stations' wave in ``_kernels``'s layout
     (``_wave_columns``) and u (eta_xixi = dS/dxi, the slope of S's Hermite interpolant: 0.4 % at 8 points per wavelength where a linear one of the tabulated dS/dxi is 7.6 %
     low), at the stations' instantaneous positions from the line
@@ -168,11 +189,11 @@ def _station_wave(xs, p, m, s, line, decay, wave):
     ``wave`` (nst, ``WAVE_BUFFER``) receives (eta, S) in its first columns, then with the pressure
     decay (``decay`` (nst, ``DECAY_BLOCKS`` r), r > 0: the station weights (WF, WZ, WY, W_1 ...
     W_6, WX_a, WX_b) of ``waves.synthesis.decay_factors``) dphi_zt = sum_j WF_ij P_j,
-    S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j, T_yy = -sum_j WY_ij Q_j and
-    U_yy = sum_j WY_ij P_j / g in columns 2-6, the heeled section's H_1 ... H_6 in 7-12, the
-    cross-beam correction W = -sum_j (l_a WX_a,ij + l_b WX_b,ij) P_j / g in 13 (l_a, l_b: quadratic
-    interpolation in u = sin^2 of the relative heading beta - psi on the nodes 0, u_a and 1 of
-    ``waves.synthesis.crossbeam_node``, exact at the course's heading)
+    S_h = sum_j WF'_ij Q_j, S_hz = sum_j WZ'_ij Q_j, T_yy = -sum_j WY_r,ij Q_j and
+    U_yy = sum_j WY_y,ij P_j / g in columns 2-6, the heeled section's H_1 ... H_6 in 7-12, the
+    cross-beam correction W = -sum_j (l_a WX_a,ij + l_b WX_b,ij) P_j / g in 13 (``la``, ``lb``:
+    :func:`_crossbeam_weights`), the primed weights with their cross-beam remainders
+    (WF' = WF + l_a WdF_a + l_b WdF_b, ``waves.synthesis.LineWaves``)
     (P_j, Q_j in the table's columns 3 + 4 j and 5 + 4 j, their slopes after each, Hermite as eta),
     and with the curved waterline (``M_CURVED``) eta_xixi in column 3, or 14 with the decay: the
     first ``_wave_columns`` columns are ``_kernels._fkhs``'s layout. Column ``U_COLUMN`` receives
@@ -209,15 +230,6 @@ def _station_wave(xs, p, m, s, line, decay, wave):
         for i in range(xs.shape[0]):
             wave[i, 2] = 0.0
     inside = True
-    la = 0.0
-    lb = 0.0
-    if nr > 0:
-        # the cross-beam correction's interpolation weights at the relative heading's u = sin^2 on
-        # the nodes 0, u_a, 1 (``waves.synthesis.crossbeam_node``)
-        ua = _crossbeam_node(sb)
-        u = math.sin(math.atan2(sb, cb) - s[S_YAW]) ** 2
-        la = u * (u - 1.0) / (ua * (ua - 1.0))
-        lb = u * (u - ua) / (1.0 - ua)
     for i in range(xs.shape[0]):
         d = ct * (xs[i] - xg) + ox
         xi = (x0 + cy * d) * cb + (y0 + sy * d) * sb
@@ -253,10 +265,10 @@ def _station_wave(xs, p, m, s, line, decay, wave):
                 pj = _hermite(line[k, c], line[k, c + 1], line[k + 1, c], line[k + 1, c + 1], t, h)
                 qj = _hermite(line[k, c + 2], line[k, c + 3], line[k + 1, c + 2], line[k + 1, c + 3], t, h)
                 dz += decay[i, j] * pj
-                sh += decay[i, j] * qj
-                shz += decay[i, nr + j] * qj
-                tyy -= decay[i, 2 * nr + j] * qj
-                uyy += decay[i, 2 * nr + j] * pj
+                sh += _remainder_weight(decay, i, j, nr, 0, 11, la, lb) * qj
+                shz += _remainder_weight(decay, i, j, nr, 1, 13, la, lb) * qj
+                tyy -= _remainder_weight(decay, i, j, nr, 2, 15, la, lb) * qj
+                uyy += _remainder_weight(decay, i, j, nr, 2, 17, la, lb) * pj
                 h1 -= decay[i, 3 * nr + j] * pj
                 h2 -= decay[i, 4 * nr + j] * pj
                 h3 -= decay[i, 5 * nr + j] * pj
@@ -305,7 +317,7 @@ def _line_value(line, m, u, c):
 
 
 @njit(cache=True)
-def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, wave, work, out):
+def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, la, lb, wave, work, out):
     """Add to ``out`` (6,) the horizontal FK force of the pitched sections' tilt and its moment
     about G (heading frame), after ``_fkhs`` left each section's area and first moments (body axes,
     about the body origin) in ``work[:, 2:5]``.
@@ -344,19 +356,21 @@ def _tilt_loads(xs, dx, rho, g, xg, zg, zw, phi, theta, cb, sb, line, m, decay, 
         # the centroid's distance along xi from the station, then dV (S_c - S)
         d = cb * st * (sp * work[i, 3] + cp * (work[i, 4] - zw * A)) / A
         if nr > 0:
-            # the pressure decay: the area-averaged slope S_h = sum_j WF_ij Q_j there and here, and
+            # the pressure decay: the area-averaged slope S_h = sum_j WF'_ij Q_j there and here, and
             # since the decaying gradient's resultant lies Z / F above the centroid, where the slab is
             # cos(beta) sin(theta) cos(phi) Z / F further along xi, its change there: dS_hz/dxi
-            # (S_hz = sum_j WZ_ij Q_j) times that factor
+            # (S_hz = sum_j WZ'_ij Q_j) times that factor (primed: with the cross-beam remainders,
+            # ``_station_wave``)
             sc = 0.0
             lift = cb * st * cp
             kc, tc = _line_cell(line, m, wave[i, U_COLUMN] + d / h)  # the centroid's
             ks, ts = _line_cell(line, m, wave[i, U_COLUMN])  # the station's
             for j in range(nr):
                 c = 5 + 4 * j
-                sc += decay[i, j] * _hermite(line[kc, c], line[kc, c + 1], line[kc + 1, c], line[kc + 1, c + 1], tc, h)
-                sc += lift * decay[i, nr + j] * _hermite_slope(line[ks, c], line[ks, c + 1], line[ks + 1, c],
-                                                               line[ks + 1, c + 1], ts, h)
+                sc += _remainder_weight(decay, i, j, nr, 0, 11, la, lb) * _hermite(
+                    line[kc, c], line[kc, c + 1], line[kc + 1, c], line[kc + 1, c + 1], tc, h)
+                sc += lift * _remainder_weight(decay, i, j, nr, 1, 13, la, lb) * _hermite_slope(
+                    line[ks, c], line[ks, c + 1], line[ks + 1, c], line[ks + 1, c + 1], ts, h)
             e = (sc - wave[i, 3]) * A * dx[i]
         else:
             e = (_line_value(line, m, wave[i, U_COLUMN] + d / h, 1) - wave[i, 1]) * A * dx[i]
@@ -607,7 +621,8 @@ def _wave_loads(xs, dx, ys, zs, npts, tab, lim, p, m, line, decay, s, f, wave, w
     """FK + HS loads ``f`` (6,) about G in the heading frame for the wave line ``line`` at this time:
     the stations' wave (``_station_wave``), the sections (``_fkhs``, the wave heading relative to the
     ship beta - psi) and their tilt (``_tilt_loads``). Returns False if a station left the table."""
-    inside = _station_wave(xs, p, m, s, line, decay, wave)
+    la, lb = _crossbeam_weights(p, m, s) if decay.shape[1] > 0 else (0.0, 0.0)
+    inside = _station_wave(xs, p, m, s, line, decay, la, lb, wave)
     rel = math.atan2(p[P_SIN_BETA], p[P_COS_BETA]) - s[S_YAW]
     cb = math.cos(rel)
     sb = math.sin(rel)
@@ -616,7 +631,7 @@ def _wave_loads(xs, dx, ys, zs, npts, tab, lim, p, m, line, decay, s, f, wave, w
           cb, sb, wave[:, :_wave_columns(m, decay)], f, work)
     if m[M_KEEL_LINE] != 0.0:
         _tilt_loads(xs, dx, p[P_RHO], p[P_G], p[P_XG], p[P_ZG], m[M_WL_HEIGHT], s[S_ROLL], s[S_PITCH], cb, sb, line,
-                    m, decay, wave, work, f)
+                    m, decay, la, lb, wave, work, f)
     return inside
 
 

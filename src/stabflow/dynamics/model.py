@@ -359,17 +359,33 @@ class SectionDecay:
         linear heave force is then exact for any heading and section shape with one wet interval
         of y at each depth; the pitch moment keeps the surge force's part, whose area average F
         has no cos(k_y y); trimmed by theta the waterline's breadth is b / cos(theta), which X
-        leaves out, a relative error of about theta^2 / 2)."""
+        leaves out, a relative error of about theta^2 / 2).
+
+        And a fifth, D (4, nst, nc) (or (nb, 4, nst, nc)): the same remainder of the horizontal
+        force, its lever and the roll and yaw moments, as increments dF, dZ, dY_r, dY_y of F, Z and
+        Y (``_kernels._decay_moments``). On the symmetric section, Gauss's theorem with the exact
+        phase psi + k_y y gives the linear sway and surge forces rho g a (k_y, k_x) sin(psi)
+        int e^(k z) cos(k_y y) dA (F's e^(k z) times each slice's mean sinc(k_y B / 2): dF, and at
+        the height of their resultant: dZ), the yaw moment of the horizontal gradient's variation
+        across the beam with int y sin(k_y y) e^(k z) dA in place of k_y int y^2 e^(k z) dA (each
+        slice's y^2 moment times R(k_y B / 2) = 3 (sin u - u cos u) / u^3: dY_y) and the roll
+        moment of the vertical gradient's the same, less the waterline's own term,
+        -rho g a sin(psi) int (y sin(k_y y) - k_y y^2) dy = -rho g a sin(psi) k_y b^3 (R(k_y b / 2)
+        - 1) / 12 (the planar waterline's lateral slope takes the wave as linear across the
+        breadth): dY_r = dY_y - b^3 (R(k_y b / 2) - 1) / (12 k A). The kernel's S_h, S_hz, T_yy
+        and U_yy then use F + dF, Z + dZ, Y + dY_r and Y + dY_y (``waves.synthesis``): the upright
+        section's linear FK loads are then those of the exact phase in all six modes."""
         k = np.ascontiguousarray(np.atleast_1d(np.asarray(k, float)))
         nst = self.slice_area.shape[0]
         F, Z, Y = (np.empty((nst, len(k))) for _ in range(3))
         sbs = np.atleast_1d(np.asarray([] if sin_beta is None else sin_beta, float))
         X = np.empty((len(sbs), nst, len(k)))
+        D = np.empty((len(sbs), 4, nst, len(k)))
         K._decay_moments(k, self.half_height, self.slice_depth, self.slice_area, self.slice_offset, self.slice_yy,
-                         self.slice_yy_tilt, self.total, F, Z, Y, sbs, self.slice_breadth, self.waterline_breadth, X)
+                         self.slice_yy_tilt, self.total, F, Z, Y, sbs, self.slice_breadth, self.waterline_breadth, X, D)
         if sin_beta is None:
             return F, Z, Y
-        return F, Z, Y, (X[0] if np.ndim(sin_beta) == 0 else X)
+        return (F, Z, Y, X[0], D[0]) if np.ndim(sin_beta) == 0 else (F, Z, Y, X, D)
 
 
 def section_decay(sec: Sections, h0: float, th0: float) -> SectionDecay:

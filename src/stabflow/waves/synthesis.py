@@ -155,12 +155,16 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     if decay is not None:
         # dphi_zt = -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
         # T_yy = sum a k^2 Y sin psi, U_yy = -sum a k^2 Y cos psi
-        F, Z, Y, X = decay.moments(k, np.sin(np.radians(heading_deg)))
+        F, Z, Y, X, (dF, dZ, dYr, dYy) = decay.moments(k, np.sin(np.radians(heading_deg)))
+        if curvature:
+            # the curved waterline's parabola carries a part of the cross-beam phase (``_kernels._fkhs``)
+            dF = dZ = dYr = dYy = 0.0
+        Fh, Zh, Yr, Yy = F + dF, Z + dZ, Y + dYr, Y + dYy  # the cross-beam remainders (``SectionDecay.moments``)
         cols.append((-G * ak * F * cP, -G * ak * F * sP))
-        cols.append((-ak * F * sP, ak * F * cP))
-        cols.append((-ak * Z * sP, ak * Z * cP))
-        cols.append((ak * k * Y * sP, -ak * k * Y * cP))
-        cols.append((-ak * k * Y * cP, -ak * k * Y * sP))  # U_yy = -sum a k^2 Y cos psi
+        cols.append((-ak * Fh * sP, ak * Fh * cP))
+        cols.append((-ak * Zh * sP, ak * Zh * cP))
+        cols.append((ak * k * Yr * sP, -ak * k * Yr * cP))
+        cols.append((-ak * k * Yy * cP, -ak * k * Yy * sP))  # U_yy = -sum a k^2 Y cos psi
         # the heeled section's terms (``SectionDecay.heel_weights``): sum a k w cos psi, then sin psi
         hw = decay.heel_weights(k, (F, Z, Y))
         for w in hw[:3]:
@@ -182,9 +186,14 @@ DECAY_RANK_TOLERANCE = 0.01
 #: the largest rank (four table columns each)
 DECAY_RANK_MAX = 6
 #: the station weights' blocks of :func:`decay_factors`: WF, WZ, WY of a_n k_n times F, Z, k Y
-#: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``) and WX_a,
-#: WX_b of a_n k_n times X / k at the two cross-beam nodes (:func:`crossbeam_node`)
-DECAY_BLOCKS = 11
+#: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``), WX_a,
+#: WX_b of a_n k_n times X / k at the two cross-beam nodes (:func:`crossbeam_node`) and the
+#: remainders of the horizontal terms there, each at the two nodes: a_n k_n times dF, dZ, k dY_r
+#: and k dY_y (``SectionDecay.moments``' D)
+DECAY_BLOCKS = 19
+#: the blocks of the remainders dF, dZ, dY_r, dY_y at the first node (the second node's follow
+#: each) and the upright block each corrects (WF, WZ, WY, WY)
+DECAY_REMAINDER_BLOCKS = ((11, 0), (13, 1), (15, 2), (17, 2))
 
 
 def crossbeam_node(sin_beta: float) -> float:
@@ -210,15 +219,19 @@ def decay_factors(amp, k, decay, sin_beta: float = 0.0):
     a_n k_n (F_i, Z_i, k_n Y_i)(k_n) ~ sum_j (WF_ij, WZ_ij, WY_ij) C_nj, and the heeled section's
     six terms a_n k_n w_i(k_n) ~ sum_j W_ij C_nj (w of ``SectionDecay.heel_weights``) and the
     cross-beam correction a_n X_i(k_n) ~ sum_j WX_ij C_nj (X of ``SectionDecay.moments`` at the two
-    nodes of :func:`crossbeam_node` for the course's heading sine ``sin_beta``): one
+    nodes of :func:`crossbeam_node` for the course's heading sine ``sin_beta``), and at the same
+    nodes the remainders of the horizontal terms, a_n k_n (dF, dZ, k dY_r, k dY_y) (D of
+    ``SectionDecay.moments``; ``DECAY_REMAINDER_BLOCKS``): one
     truncated singular value decomposition of the (component, ``DECAY_BLOCKS`` x station) matrix
-    of the eleven, each station's column scaled to unit norm, the cross-beam columns to the norm of
-    the planar waterline's linear vertical force a_n (b_i - k_n A_i F_i) where that is larger (the
-    correction is then carried to 1 % of the station's vertical force, not of itself). Its r is the least for which every column's residual norm over the components (the
+    of the nineteen, each station's column scaled to unit norm, the cross-beam columns to the norm of
+    the term they correct where that is larger (X: the planar waterline's linear vertical force
+    a_n (b_i - k_n A_i F_i); the remainders: their upright block's column), so that a correction is
+    carried to 1 % of the station's term, not of itself. Its r is the least for which every column's residual norm over the components (the
     standard deviation of the term's error over random phases) is within ``DECAY_RANK_TOLERANCE`` of
     the column's scale, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
     is not enough). Returns the line factors C (nc, r) and the station
-    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY, the six heeled ones, WX_a and WX_b, each factor's sign
+    weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY, the six heeled ones, WX_a, WX_b and the
+    remainders' eight (WdF_a, WdF_b, WdZ_a, WdZ_b, WdYr_a, WdYr_b, WdYy_a, WdYy_b), each factor's sign
     chosen so that its weights WF sum to >= 0 (one regular wave's weights then do not depend on
     its amplitude's sign)."""
     M, norm, full = decay_matrix(amp, k, decay, sin_beta)
@@ -269,19 +282,25 @@ def decay_matrix(amp, k, decay, sin_beta: float = 0.0):
     amp = np.asarray(amp, float)
     k = np.asarray(k, float)
     ua = crossbeam_node(float(sin_beta))
-    F, Z, Y, (Xa, Xb) = decay.moments(k, (np.sqrt(ua), 1.0))  # (nst, nc) each, one pass
+    F, Z, Y, (Xa, Xb), (Da, Db) = decay.moments(k, (np.sqrt(ua), 1.0))  # (nst, nc) each, one pass
     nst = F.shape[0]
     ak = (amp * k)[:, None]
-    M = np.concatenate([F, Z, Y * k[None, :], *decay.heel_weights(k, (F, Z, Y)), Xa / k[None, :],
-                        Xb / k[None, :]]).T * ak
+    kk = k[None, :]
+    remainders = [d for q in range(4) for d in ((Da[q], Db[q]) if q < 2 else (kk * Da[q], kk * Db[q]))]
+    M = np.concatenate([F, Z, Y * kk, *decay.heel_weights(k, (F, Z, Y)), Xa / kk, Xb / kk, *remainders]).T * ak
     norm = np.sqrt(np.sum(M**2, axis=0))
     full = np.ones_like(norm)
     vertical = np.sqrt(np.sum((amp[:, None] * (decay.waterline_breadth[None, :] - k[:, None] * decay.total[None, :]
                                                 * F.T)) ** 2, axis=0))
-    for b in (DECAY_BLOCKS - 2, DECAY_BLOCKS - 1):
+    # each cross-beam block's scale: at least that of the term it corrects (the planar vertical force
+    # for X, the upright block for the remainders)
+    scales = [(9, vertical), (10, vertical)]
+    for b, base in DECAY_REMAINDER_BLOCKS:
+        scales += [(b, norm[base * nst:(base + 1) * nst]), (b + 1, norm[base * nst:(base + 1) * nst])]
+    for b, scale in scales:
         cols = slice(b * nst, (b + 1) * nst)
         own = norm[cols].copy()
-        norm[cols] = np.maximum(own, vertical)
+        norm[cols] = np.maximum(own, scale)
         full[cols] = np.where(norm[cols] > 0, (own / np.where(norm[cols] > 0, norm[cols], 1.0)) ** 2, 1.0)
     return M, norm, full
 
@@ -303,11 +322,13 @@ class LineWaves:
         The ship's sections' pressure decay (:class:`stabflow.dynamics.model.SectionDecay`): the
         tables then carry r = ``decay_coef.shape[1]`` groups of four columns (:func:`decay_factors`),
         P_j = -g sum_n C_nj cos psi_n, its slope dP_j/dxi, Q_j = -sum_n C_nj sin psi_n and dQ_j/dxi;
-        at station i, dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF_ij Q_j, S_hz = sum_j WZ_ij Q_j,
-        T_yy = -sum_j WY_ij Q_j and U_yy = sum_j WY_ij P_j / g, the heeled section's terms and the
+        at station i, dphi_zt = sum_j WF_ij P_j, S_h = sum_j WF'_ij Q_j, S_hz = sum_j WZ'_ij Q_j,
+        T_yy = -sum_j WY_r,ij Q_j and U_yy = sum_j WY_y,ij P_j / g, the heeled section's terms and the
         cross-beam correction W = -sum_j (L_a WX_a,ij + L_b WX_b,ij) P_j / g (the nodes' weights at the
-        instantaneous relative heading, :func:`crossbeam_node`), with ``decay_weights`` (nst,
-        ``DECAY_BLOCKS`` r) = (WF, WZ, WY, W_1 ... W_6, WX_a, WX_b).
+        instantaneous relative heading, :func:`crossbeam_node`), where WF' = WF + L_a WdF_a + L_b WdF_b
+        and likewise WZ', WY_r and WY_y (the horizontal terms' cross-beam remainders), with
+        ``decay_weights`` (nst, ``DECAY_BLOCKS`` r) = (WF, WZ, WY, W_1 ... W_6, WX_a, WX_b, WdF_a,
+        WdF_b, WdZ_a, WdZ_b, WdYr_a, WdYr_b, WdYy_a, WdYy_b).
     """
 
     def __init__(self, amp, omega, phase, heading_deg: float, speed: float, decay=None):
