@@ -497,21 +497,22 @@ def dphi_dzdt_vs_pressure(sec: Sections, st: xr.Dataset, co: Coefficients, rho: 
 
 
 def roll_excitation_with_decay(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, mesh, h0: float,
-                               th0: float) -> dict:
-    """Roll excitation of the ship held at its calm-water equilibrium in beam waves at its natural
-    roll frequency (lambda 2 pi g / w_phi^2, H/lambda 1/500): first harmonic of the roll moment
-    about G (:func:`stabflow.dynamics.linear.fk_excitation`) of the kernel with the pressure decay
-    (``dphi_dzdt``: ``dynamics.model.SectionDecay``) against surface-pressure integration with the
-    e^(k z) decay on the hull mesh, the wave's phase linearised across the beam
-    (``waterline="planar"``, the kernel's own assumption).
+                               th0: float, factor: float = 1.0) -> dict:
+    """Roll excitation of the ship held at its calm-water equilibrium in beam waves at ``factor``
+    times its natural roll frequency (lambda 2 pi g / (factor w_phi)^2, H/lambda 1/500): first
+    harmonic of the roll moment about G (:func:`stabflow.dynamics.linear.fk_excitation`) of the
+    kernel with the pressure decay (``dphi_dzdt``: ``dynamics.model.SectionDecay``, with the
+    cross-beam remainders) against surface-pressure integration with the e^(k z) decay on the hull
+    mesh and the exact wave surface.
 
     Returns ``deviation`` [%] (kernel with decay / pressure with decay - 1), ``without`` [%] (the
-    kernel without the decay / the same reference - 1), ``exact`` [%] (the kernel with decay /
-    pressure integration with decay on the exact wave surface - 1), the ``wavelength`` [m] and the
-    reference moment ``reference`` [N m]."""
+    kernel without the decay / the same reference - 1), ``planar`` [%] (the kernel with decay /
+    pressure integration with decay and the wave's phase linearised across the beam, the sections'
+    planar waterline's assumption before the cross-beam remainders - 1), the ``wavelength`` [m]
+    and the reference moment ``reference`` [N m]."""
     from stabflow.dynamics.model import section_decay
 
-    lam = float(2 * np.pi * G / co.natural_frequency("roll") ** 2)
+    lam = float(2 * np.pi * G / (factor * co.natural_frequency("roll")) ** 2)
     W = regular(lam / 500.0, lam)
     we = float(W[1][0])
     lcg, kg = float(st["lcg"]), float(st["kg"])
@@ -522,9 +523,9 @@ def roll_excitation_with_decay(sec: Sections, st: xr.Dataset, co: Coefficients, 
                        ("planar", PressureModel(*mesh, rho, lcg, kg, W, BEAM, 0.0, decay=True, waterline="planar")),
                        ("exact", PressureModel(*mesh, rho, lcg, kg, W, BEAM, 0.0, decay=True))):
         roll[key] = abs(fk_excitation(model, h0, th0, we)[1])
-    return {"deviation": 100 * (roll["kernel"] / roll["planar"] - 1),
-            "without": 100 * (roll["without"] / roll["planar"] - 1),
-            "exact": 100 * (roll["kernel"] / roll["exact"] - 1), "wavelength": lam, "reference": roll["planar"]}
+    return {"deviation": 100 * (roll["kernel"] / roll["exact"] - 1),
+            "without": 100 * (roll["without"] / roll["exact"] - 1),
+            "planar": 100 * (roll["kernel"] / roll["planar"] - 1), "wavelength": lam, "reference": roll["exact"]}
 
 
 def bem_hull(ship: Ship):
@@ -892,14 +893,14 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
 
         return lazy.get("dphi", run)
 
-    def roll_decay_beam():
+    def roll_decay_beam(factor=1.0):
         def run():
             mesh_for(0.0)
             sec, co, h0, th0 = b()
-            lam = float(2 * np.pi * G / co.natural_frequency("roll") ** 2)
-            return roll_excitation_with_decay(sec, st, co, rho, mesh_for(lam / 1000.0, None), h0, th0)
+            lam = float(2 * np.pi * G / (factor * co.natural_frequency("roll")) ** 2)
+            return roll_excitation_with_decay(sec, st, co, rho, mesh_for(lam / 1000.0, None), h0, th0, factor)
 
-        return lazy.get("roll_decay_beam", run)
+        return lazy.get(f"roll_decay_beam_{factor:g}", run)
 
     def hybrid():
         def run():
@@ -1050,18 +1051,20 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
     # --- the pressure decay's roll moment in beam seas at the roll frequency (the horizontal
     # gradient with its lever and the vertical gradient across the beam), ship held: the DSA's
     # kernel against pressure integration with decay -> independent
-    row = _row(lambda: roll_decay_beam()["deviation"],
-               "pressure decay, beam waves at the roll frequency, ship held: roll excitation vs pressure integration "
-               "with decay", "%",
-               "first harmonic of the roll moment about G by surface-pressure integration on the hull mesh with the "
-               "e^{kz} decay, the wave's phase linearised across the beam (the kernel's planar waterline), 90 deg, "
-               "lambda = 2 pi g / w_phi^2, H/lambda = 1/500, ship at its calm-water equilibrium", "independent",
-               tolerance=TOL_ROLL_DECAY)
-    if row.status != "SKIPPED" and np.isfinite(row.value):
-        r = roll_decay_beam()
-        row.reference += (f": {r['reference']:.4g} N m at lambda {r['wavelength']:.1f} m; without the decay "
-                          f"{r['without']:+.1f} %; against the exact wave surface {r['exact']:+.1f} %")
-    rows.append(row)
+    for factor, label, lam_text in ((1.0, "the roll frequency", "2 pi g / w_phi^2"),
+                                    (2.0, "twice the roll frequency", "2 pi g / (2 w_phi)^2")):
+        row = _row(lambda factor=factor: roll_decay_beam(factor)["deviation"],
+                   f"pressure decay, beam waves at {label}, ship held: roll excitation vs pressure integration "
+                   "with decay", "%",
+                   "first harmonic of the roll moment about G by surface-pressure integration on the hull mesh with "
+                   f"the e^{{kz}} decay on the exact wave surface, 90 deg, lambda = {lam_text}, H/lambda = 1/500, "
+                   "ship at its calm-water equilibrium", "independent", tolerance=TOL_ROLL_DECAY)
+        if row.status != "SKIPPED" and np.isfinite(row.value):
+            r = roll_decay_beam(factor)
+            row.reference += (f": {r['reference']:.4g} N m at lambda {r['wavelength']:.1f} m; without the decay "
+                              f"{r['without']:+.1f} %; against pressure integration with the phase linearised "
+                              f"across the beam (the sections' planar waterline's assumption) {r['planar']:+.1f} %")
+        rows.append(row)
     # --- the heel's part of that roll moment in the waves of parametric roll (the restoring's
     # variation, with the heeled section's decay terms) -> independent
     row = _row(lambda: heel_decay_beam()["deviation"],
