@@ -108,6 +108,29 @@ def test_kernel_loads_with_pressure_decay_against_pressure_integration(barge, wa
 
 
 @pytest.mark.parametrize("wavelength,heading", [(60.0, 90.0), (80.0, 60.0)])
+def test_heeled_roll_moment_with_pressure_decay_against_the_exact_surface(barge, wavelength, heading):
+    """The heel's part of the roll moment's first harmonic (half the difference between +-2 degree)
+    of the kernel with the pressure decay, the heeled section's cross-beam terms included
+    (``SectionDecay.moments``' Gamma_B, X + dF_y), on the barge held in regular waves, H/lambda
+    1/100, against pressure integration with the e^(k z) decay on the exact wave surface: within
+    2 % (measured 0.32 % at lambda 60 m, 90 degree and 0.02 % at 80 m, 60 degree); without those
+    terms 106 % and 35 % off (the heeled sections took the
+    phase as linear across the beam)."""
+    kernel, _, h0, th0, we = _barge_decay_models(barge, wavelength, heading, 1.0 / 100.0)
+    exact = _barge_decay_models(barge, wavelength, heading, 1.0 / 100.0, waterline="exact")[1]
+    t = np.arange(32) * 2 * np.pi / we / 32
+
+    def odd(model):
+        h = [first_harmonic(t, np.array([model.loads(tt, h0, np.radians(sign * 2.0), th0)[3] for tt in t]), we)
+             for sign in (1.0, -1.0)]
+        return 0.5 * (h[0][0] * np.exp(1j * h[0][1]) - h[1][0] * np.exp(1j * h[1][1]))
+
+    ref = odd(exact)
+    err = abs(odd(kernel) - ref) / abs(ref)
+    assert err < 0.02, err
+
+
+@pytest.mark.parametrize("wavelength,heading", [(60.0, 90.0), (80.0, 60.0)])
 def test_heeled_kernel_loads_with_pressure_decay_against_pressure_integration(barge, wavelength, heading):
     """The heel's part of the first-harmonic FK loads (half the difference between +-10 degree of
     heel) of the kernel with the pressure decay on the barge held in oblique regular waves,

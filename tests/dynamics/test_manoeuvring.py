@@ -167,7 +167,9 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     F, Z, Y = model.decay.moments(k)
     # the cross-beam correction at the relative heading beta - psi = 5 degree, interpolated on the
     # nodes sin^2 = 0, 0.25 (the course's 30 degree) and 1
-    _, _, _, Xb, (dF, dZ, dYr, dYy) = model.decay.moments(k, np.sin(b - s[K.S_YAW]))
+    _, _, _, Xb, (dF, dZ, dYr, dYy, gB, xf) = model.decay.moments(k, np.sin(b - s[K.S_YAW]))
+    hw = list(model.decay.heel_weights(k))
+    hw[1], hw[2] = hw[1] + xf / k, hw[2] - gB / k
     assert np.max(np.abs(Xb)) > 1e-4 * np.max(model.decay.total)  # the correction is there to read
     assert np.max(np.abs(dYr)) > 1e-3 * np.max(np.abs(Y))  # and the remainders (0.5 % of Y at 5 degree)
     for col, exact in ((2, (-G * amp * k * F * np.cos(psi)).sum(1)), (3, (-amp * k * (F + dF) * np.sin(psi)).sum(1)),
@@ -176,7 +178,7 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
                        (5, (amp * k * k * (Y + dYr) * np.sin(psi)).sum(1)),
                        (6, (-amp * k * k * (Y + dYy) * np.cos(psi)).sum(1)),
                        *((7 + j, (amp * k * w * (np.cos(psi) if j < 3 else np.sin(psi))).sum(1))
-                         for j, w in enumerate(model.decay.heel_weights(k)))):
+                         for j, w in enumerate(hw))):
         assert np.max(np.abs(wave[:, col] - exact)) < 0.02 * np.max(np.abs(exact)), col
     # one regular wave: rank 1, exact, the weights the same whatever the amplitude's sign
     one, minus = (line_waves(model, (np.array([a]), w[:1], ph[:1])) for a in (0.5, -0.5))
@@ -185,7 +187,8 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     F1, Z1, Y1, X1, D1 = model.decay.moments(k[:1], np.sin(b))
     Xe, De = model.decay.moments(k[:1], 1.0)[3:]
     k0 = k[0]
-    remainders = [d for q in range(4) for d in ((D1[q], De[q]) if q < 2 else (k0 * D1[q], k0 * De[q]))]
+    unit = (1.0, 1.0, k0, k0, 1.0 / k0, -1.0 / k0)
+    remainders = [unit[q] * d for q in range(6) for d in (D1[q], De[q])]
     np.testing.assert_allclose(one.decay_coef[0, 0] * one.decay_weights,
                                0.5 * k0 * np.column_stack([F1, Z1, k0 * Y1, *model.decay.heel_weights(k[:1]),
                                                            X1 / k0, Xe / k0, *remainders]),

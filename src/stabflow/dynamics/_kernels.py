@@ -844,6 +844,22 @@ def _crossbeam_ratios(u):
 
 
 @njit(cache=True, inline="always")
+def _crossbeam_ratios3(u):
+    """``_crossbeam_ratios`` and P(u) - 1, P(u) = 3 (u^2 sin u + 2 u cos u - 2 sin u) / u^3 the ratio
+    of int y^2 cos(k_y y) dy to int y^2 dy over a strip of breadth B (u = k_y B / 2): series below
+    |u| 0.5 (P - 1 = sum_{n >= 1} (-1)^n 3 u^(2n) / ((2n + 3) (2n)!)), else closed form."""
+    s, r = _crossbeam_ratios(u)
+    x = u * u
+    if x < 0.25:
+        p = -0.3 * x * (1.0 - x * 5.0 / (7.0 * 3.0 * 4.0) * (1.0 - x * 7.0 / (9.0 * 5.0 * 6.0) * (
+            1.0 - x * 9.0 / (11.0 * 7.0 * 8.0) * (1.0 - x * 11.0 / (13.0 * 9.0 * 10.0) * (
+                1.0 - x * 13.0 / (15.0 * 11.0 * 12.0))))))
+        return s, r, p
+    sn = math.sin(u)
+    return s, r, 3.0 * (x * sn + 2.0 * u * math.cos(u) - 2.0 * sn) / (x * u) - 1.0
+
+
+@njit(cache=True, inline="always")
 def _slice_exp(e, j, rec, step, z, k):
     """e^(k z) at slice ``j`` (mid-depth ``z``) from the previous slice's ``e``: by the recurrence
     factor ``step`` (``rec``), reset to the exact value every 16 slices and near underflow."""
@@ -853,7 +869,8 @@ def _slice_exp(e, j, rec, step, z, k):
 
 
 @njit(cache=True)
-def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y, sbs, breadth, beam_wl, X, D):
+def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z, Y, sbs, breadth, beam_wl, X, D,
+                   flare, origin):
     """Fill F, Z, Y (nst, nc) with the sections' area averages of e^(k z), (z - z_c) e^(k z) and
     y^2 e^(k z) from their horizontal slices (``model.SectionDecay``: half heights (nst,), slice
     mid-depths, areas, centroid offsets, int y^2 dA and its upper-minus-lower halves (nst, ns), section
@@ -865,13 +882,24 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
     (sinc(k_y B / 2) - 1) dA [m^2], then dF = int e^(k z) (sinc - 1) dA / A, dZ = int (z - z_c)
     e^(k z) (sinc - 1) dA / A [m], dY_r = dY_y - b^3 (R(k_y b / 2) - 1) / (12 k A) [m^2] and
     dY_y = int y^2 e^(k z) (R(k_y B / 2) - 1) dA / A [m^2] (``_crossbeam_ratios``), in this order
-    along D's second axis; all 0 at a dry station and in head and following waves."""
+    along D's second axis, then the heeled section's: Gamma_B [m^3] and X + dF_y [m^2]
+    (``SectionDecay.moments``; ``flare`` (nst,) the half breadth's slope at the calm waterline,
+    ``origin`` (nst,) the body origin's height above it [m]); all 0 at a dry station and in head and
+    following waves."""
     nst, ns = area.shape
     nc = k.shape[0]
     nb = X.shape[0]
     xb = np.zeros(nb)  # int e^(k z) (sinc(k_y B / 2) - 1) dA for each heading
     zb = np.zeros(nb)  # int z e^(k z) (sinc(k_y B / 2) - 1) dA
     yb = np.zeros(nb)  # int y^2 e^(k z) (R(k_y B / 2) - 1) dA
+    # the heeled section's integrals (``SectionDecay.moments``): int e^(k z) (1, z, z^2) sinc dA,
+    # int y^2 e^(k z) (1, z) R dA and int y^2 e^(k z) (P - 1) dA
+    hs0 = np.zeros(nb)
+    hs1 = np.zeros(nb)
+    hs2 = np.zeros(nb)
+    hr0 = np.zeros(nb)
+    hr1 = np.zeros(nb)
+    hp0 = np.zeros(nb)
     c = np.empty(ns)  # 3 (slice centroid - mid-height) / h of a station's slices
     for i in range(nst):
         a_i = total[i]
@@ -882,7 +910,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                 Y[i, n] = 0.0
                 for b in range(nb):
                     X[b, i, n] = 0.0
-                    for q in range(4):
+                    for q in range(6):
                         D[b, q, i, n] = 0.0
             continue
         h = half_height[i]
@@ -937,6 +965,12 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                     xb[b] = 0.0
                     zb[b] = 0.0
                     yb[b] = 0.0
+                    hs0[b] = 0.0
+                    hs1[b] = 0.0
+                    hs2[b] = 0.0
+                    hr0[b] = 0.0
+                    hr1[b] = 0.0
+                    hp0[b] = 0.0
                 e = 1.0
                 for j in range(ns):
                     e = _slice_exp(e, j, rec, step, depth[i, j], k[n])
@@ -947,24 +981,50 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                     eyy = e * (yy[i, j] * s1 + 2.0 * yy_tilt[i, j] * s2)
                     for b in range(nb):
                         if sbs[b] != 0.0:
-                            ds, dr = _crossbeam_ratios(0.5 * k[n] * sbs[b] * breadth[i, j])
+                            ds, dr, dp = _crossbeam_ratios3(0.5 * k[n] * sbs[b] * breadth[i, j])
                             xb[b] += eaw * ds
                             zb[b] += eaz * ds
                             yb[b] += eyy * dr
+                            hs0[b] += eaw * (ds + 1.0)
+                            hs1[b] += eaz * (ds + 1.0)
+                            hs2[b] += eaz * depth[i, j] * (ds + 1.0)
+                            hr0[b] += eyy * (dr + 1.0)
+                            hr1[b] += eyy * depth[i, j] * (dr + 1.0)
+                            hp0[b] += eyy * dp
             F[i, n] = f / a_i
             Z[i, n] = first / a_i - zc * F[i, n]
             Y[i, n] = y / a_i
             for b in range(nb):
                 if sbs[b] == 0.0:  # head and following waves: none
                     X[b, i, n] = 0.0
-                    for q in range(4):
+                    for q in range(6):
                         D[b, q, i, n] = 0.0
                 else:
                     bw = beam_wl[i]
-                    ds, dr = _crossbeam_ratios(0.5 * k[n] * sbs[b] * bw)
+                    ub = 0.5 * k[n] * sbs[b] * bw
+                    ds, dr, dp = _crossbeam_ratios3(ub)
                     X[b, i, n] = bw * ds - k[n] * xb[b]
                     df = xb[b] / a_i
                     D[b, 0, i, n] = df
                     D[b, 1, i, n] = zb[b] / a_i - zc * df
                     D[b, 2, i, n] = yb[b] / a_i - bw * bw * bw * dr / (12.0 * k[n] * a_i)
                     D[b, 3, i, n] = yb[b] / a_i
+                    # the heeled section (``SectionDecay.moments``): with c = cos(k_y y) - 1,
+                    # int c' y e^(k z) dA = -k_y^2 int y^2 R e^(k z) dA, int c'' ... = -k_y^2 int sinc ...
+                    kn = k[n]
+                    q2 = (kn * sbs[b]) ** 2
+                    zo = origin[i]
+                    i3 = bw * bw * bw / 12.0
+                    wl_y2c = i3 * dp
+                    wl_yc1 = -q2 * i3 * (dr + 1.0)
+                    yc1 = -q2 * hr0[b]
+                    zyc1 = -q2 * hr1[b]
+                    c2 = -q2 * hs0[b]
+                    zc2 = -q2 * hs1[b]
+                    z2c2 = -q2 * hs2[b]
+                    c_end = -2.0 * math.sin(0.5 * ub) ** 2  # cos(u_b) - 1
+                    dmo = (kn * zb[b] + 2.0 * kn * zyc1 - z2c2 - kn * kn * hp0[b] + yc1 + kn * wl_y2c
+                           - zo * (kn * xb[b] + kn * yc1 - zc2) + c_end * bw * (zo - 0.5 * bw * flare[i]))
+                    dfy = zc2 - kn * yc1 + wl_yc1 - zo * c2
+                    D[b, 4, i, n] = dmo + zo * dfy
+                    D[b, 5, i, n] = X[b, i, n] + dfy

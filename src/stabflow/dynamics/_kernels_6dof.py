@@ -152,7 +152,7 @@ def _crossbeam_weights(p, m, s):
 
 @njit(cache=True, inline="always")
 def _remainder_weight(decay, i, j, nr, base, block, la, lb):
-    """Station i's weight of factor j for an upright block ``base`` (0 WF, 1 WZ, 2 WY) with its
+    """Station i's weight of factor j for a block ``base`` (0 WF, 1 WZ, 2 WY, 4 W_2, 5 W_3) with its
     cross-beam remainder's two nodes (blocks ``block`` and ``block + 1``, weighted ``la``, ``lb``)."""
     return decay[i, base * nr + j] + la * decay[i, block * nr + j] + lb * decay[i, (block + 1) * nr + j]
 
@@ -270,8 +270,8 @@ def _station_wave(xs, p, m, s, line, decay, la, lb, wave):
                 tyy -= _remainder_weight(decay, i, j, nr, 2, 15, la, lb) * qj
                 uyy += _remainder_weight(decay, i, j, nr, 2, 17, la, lb) * pj
                 h1 -= decay[i, 3 * nr + j] * pj
-                h2 -= decay[i, 4 * nr + j] * pj
-                h3 -= decay[i, 5 * nr + j] * pj
+                h2 -= _remainder_weight(decay, i, j, nr, 4, 19, la, lb) * pj
+                h3 -= _remainder_weight(decay, i, j, nr, 5, 21, la, lb) * pj
                 h4 -= decay[i, 6 * nr + j] * qj
                 h5 -= decay[i, 7 * nr + j] * qj
                 h6 -= decay[i, 8 * nr + j] * qj

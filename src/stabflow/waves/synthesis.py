@@ -155,10 +155,10 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     if decay is not None:
         # dphi_zt = -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
         # T_yy = sum a k^2 Y sin psi, U_yy = -sum a k^2 Y cos psi
-        F, Z, Y, X, (dF, dZ, dYr, dYy) = decay.moments(k, np.sin(np.radians(heading_deg)))
+        F, Z, Y, X, (dF, dZ, dYr, dYy, gB, xf) = decay.moments(k, np.sin(np.radians(heading_deg)))
         if curvature:
             # the curved waterline's parabola carries a part of the cross-beam phase (``_kernels._fkhs``)
-            dF = dZ = dYr = dYy = 0.0
+            dF = dZ = dYr = dYy = gB = xf = 0.0
         Fh, Zh, Yr, Yy = F + dF, Z + dZ, Y + dYr, Y + dYy  # the cross-beam remainders (``SectionDecay.moments``)
         cols.append((-G * ak * F * cP, -G * ak * F * sP))
         cols.append((-ak * Fh * sP, ak * Fh * cP))
@@ -166,7 +166,9 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
         cols.append((ak * k * Yr * sP, -ak * k * Yr * cP))
         cols.append((-ak * k * Yy * cP, -ak * k * Yy * sP))  # U_yy = -sum a k^2 Y cos psi
         # the heeled section's terms (``SectionDecay.heel_weights``): sum a k w cos psi, then sin psi
-        hw = decay.heel_weights(k, (F, Z, Y))
+        hw = list(decay.heel_weights(k, (F, Z, Y)))
+        # the heeled section's cross-beam remainders (``SectionDecay.moments``' D)
+        hw[1], hw[2] = hw[1] + xf / k, hw[2] - gB / k
         for w in hw[:3]:
             cols.append((ak * w * cP, ak * w * sP))
         for w in hw[3:]:
@@ -189,11 +191,12 @@ DECAY_RANK_MAX = 6
 #: (the upright terms), then the heeled section's six (``SectionDecay.heel_weights``), WX_a,
 #: WX_b of a_n k_n times X / k at the two cross-beam nodes (:func:`crossbeam_node`) and the
 #: remainders of the horizontal terms there, each at the two nodes: a_n k_n times dF, dZ, k dY_r
-#: and k dY_y (``SectionDecay.moments``' D)
-DECAY_BLOCKS = 19
-#: the blocks of the remainders dF, dZ, dY_r, dY_y at the first node (the second node's follow
-#: each) and the upright block each corrects (WF, WZ, WY, WY)
-DECAY_REMAINDER_BLOCKS = ((11, 0), (13, 1), (15, 2), (17, 2))
+#: and k dY_y, and of the heeled section's W_2 and W_3: a_n (X + dF_y) and -a_n Gamma_B
+#: (``SectionDecay.moments``' D)
+DECAY_BLOCKS = 23
+#: the blocks of the remainders dF, dZ, dY_r, dY_y, X + dF_y and -Gamma_B at the first node (the
+#: second node's follow each) and the block each corrects (WF, WZ, WY, WY, W_2, W_3)
+DECAY_REMAINDER_BLOCKS = ((11, 0), (13, 1), (15, 2), (17, 2), (19, 4), (21, 5))
 
 
 def crossbeam_node(sin_beta: float) -> float:
@@ -286,7 +289,9 @@ def decay_matrix(amp, k, decay, sin_beta: float = 0.0):
     nst = F.shape[0]
     ak = (amp * k)[:, None]
     kk = k[None, :]
-    remainders = [d for q in range(4) for d in ((Da[q], Db[q]) if q < 2 else (kk * Da[q], kk * Db[q]))]
+    # the remainders in the units of the blocks they correct (a_n k_n times these)
+    unit = (lambda d: d, lambda d: d, lambda d: kk * d, lambda d: kk * d, lambda d: d / kk, lambda d: -d / kk)
+    remainders = [unit[q](d) for q in range(6) for d in (Da[q], Db[q])]
     M = np.concatenate([F, Z, Y * kk, *decay.heel_weights(k, (F, Z, Y)), Xa / kk, Xb / kk, *remainders]).T * ak
     norm = np.sqrt(np.sum(M**2, axis=0))
     full = np.ones_like(norm)
