@@ -135,11 +135,12 @@ def test_heeled_kernel_loads_with_pressure_decay_against_pressure_integration(ba
     """The heel's part of the first-harmonic FK loads (half the difference between +-10 degree of
     heel) of the kernel with the pressure decay on the barge held in oblique regular waves,
     H/lambda 1/100, against pressure integration with the e^(k z) decay (phase linearised across
-    the beam, the kernel's assumption): the roll moment within 2 % of its own (measured 1.0 % in
-    beam waves lambda 60 m and 0.6 % at 60 degree lambda 80 m; without the heeled section's terms
-    H_1 ... H_6 50 % and 30 %), the vertical force and (at 60 degree) the pitch moment within
-    0.5 % of their upright first harmonics (measured 0.13 and 0.07 / 0.38 %; without: 12 and
-    5.5 / 6 %)."""
+    the beam, the assumption of the heeled section's terms H_1 ... H_6): the vertical force and
+    (at 60 degree) the pitch moment within 0.5 % of their upright first harmonics (measured 0.13
+    and 0.07 / 0.38 %; without those terms: 12 and 5.5 / 6 %). The roll moment's heel part was
+    within 1.0 and 0.6 % of that reference (50 and 30 % without the terms) until the heeled
+    section's cross-beam terms (2026-12-07) took it to the exact surface's: checked there at
+    +-2 degree (the test above)."""
     kernel, pressure, h0, th0, we = _barge_decay_models(barge, wavelength, heading, 1.0 / 100.0)
     t = np.arange(32) * 2 * np.pi / we / 32
 
@@ -152,7 +153,6 @@ def test_heeled_kernel_loads_with_pressure_decay_against_pressure_integration(ba
         odd[key] = 0.5 * (harmonics(model, 10.0) - harmonics(model, -10.0))
     upright = np.abs(harmonics(pressure, 0.0))
     err = np.abs(odd["kernel"] - odd["pressure"])
-    assert err[1] < 0.02 * abs(odd["pressure"][1]), err[1] / abs(odd["pressure"][1])
     assert err[0] < 0.005 * upright[0], err[0] / upright[0]
     # the pitch moment where there is one: in beam waves the fore-aft symmetric barge has none
     # (upright 18 N m against a vertical force of 3.2e6 N: round-off of the mesh)

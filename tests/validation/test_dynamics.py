@@ -35,9 +35,10 @@ ROLL_DECAY_ROW = ("pressure decay, beam waves at the roll frequency, ship held: 
                   "integration with decay")
 ROLL_DECAY_ROW2 = ("pressure decay, beam waves at twice the roll frequency, ship held: roll excitation vs pressure "
                    "integration with decay")
-HEEL_DECAY_ROW = (f"pressure decay, beam waves at twice the roll frequency, ship held at +-{vd.HEEL_DECAY_DEG:g} deg: "
-                  "heel's part of the roll moment vs pressure integration with decay")
-HEEL_DECAY_EXACT_ROW = HEEL_DECAY_ROW + " on the exact wave surface"
+HEEL_DECAY_ROW = (f"pressure decay, beam waves at twice the roll frequency, ship held at +-{vd.HEEL_DECAY_SMALL_DEG:g} "
+                  "deg: heel's part of the roll moment vs pressure integration with decay on the exact wave surface")
+HEEL_DECAY_EXACT_ROW = (f"pressure decay, beam waves at twice the roll frequency, ship held at +-{vd.HEEL_DECAY_DEG:g} "
+                        "deg: heel's part of the roll moment vs pressure integration with decay on the exact wave surface")
 HYBRID_ROWS = [f"diffraction option, beam waves, ship held: {label}, kernel FK with decay + Capytaine diffraction vs "
                "Capytaine FK + diffraction" for label in ("roll at the roll frequency", "heave at twice the roll frequency")]
 PRESSURE_ROWS = PRESSURE_ROWS + [BEAM_ROW, ROLL_DECAY_ROW, ROLL_DECAY_ROW2, HEEL_DECAY_ROW, HEEL_DECAY_EXACT_ROW] + HYBRID_ROWS
@@ -117,14 +118,18 @@ def test_barge_every_row_present_and_passes(barge_rows):
     roll2 = rows[ROLL_DECAY_ROW2]
     assert roll2.status == "PASS" and abs(roll2.value) < 1.5 and "across the beam (the sections' planar " \
         "waterline's assumption) +22.6 %" in roll2.reference
-    # its heel's part at +-10 deg in the parametric wave (lambda 77.6 m): measured 0.67 % (31 %
-    # without the heeled section's decay terms)
+    # its heel's part at +-2 deg in the parametric wave (lambda 77.6 m) against the exact surface:
+    # measured 0.81 % (with the phase linearised across the beam, as before the heeled section's
+    # cross-beam terms, the kernel was 0.67 % off that reference at +-10 deg, and 31 % without the
+    # heeled section's decay terms)
     heel = rows[HEEL_DECAY_ROW]
     assert heel.status == "PASS" and heel.value < 1.0 and "at lambda 77.6 m" in heel.reference
-    # against the exact surface it is far off: the heeled sections take the phase as linear across
-    # the beam (k B / 2 = 0.81 here)
+    # at +-10 deg the heeled section's cross-beam terms, of the first order in the heel, leave 7.8 %
+    # (45.9 % without them: the heeled sections took the phase as linear across the beam, GM
+    # amplitude 0.076 against 0.052 m); on this box their field's heel part at 10 deg is 18 % below
+    # its first-order value
     heel_exact = rows[HEEL_DECAY_EXACT_ROW]
-    assert heel_exact.status == "FAIL" and heel_exact.value > 20.0  # measured 45.9 % (GM amplitude 0.076 against 0.052 m)
+    assert heel_exact.status == "FAIL" and 5.0 < heel_exact.value < 10.0
     # GM in waves: the kernel equals pressure integration with its own planar waterline (measured
     # +0.01 % mean, +0.18 % variation); with the exact surface the variation is 0.0477 m, not 0.0595
     for n in GM_ROWS[:2]:

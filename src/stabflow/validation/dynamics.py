@@ -221,6 +221,8 @@ BEAM_STEEPNESS = 1.0 / 500.0
 TOL_ROLL_DECAY = 2.0
 #: the heel's part of the roll moment with the pressure decay: heel [degree], steepness, tolerance [%]
 HEEL_DECAY_DEG, HEEL_DECAY_STEEPNESS, TOL_HEEL_DECAY = 10.0, 1.0 / 100.0, 3.0
+#: the small heel [degree] at which that row checks the heeled section's first-order terms
+HEEL_DECAY_SMALL_DEG = 2.0
 #: the hybrid model's beam-sea excitation (kernel FK + Capytaine diffraction) against Capytaine's FK +
 #: diffraction [%]: the tolerance of the other FK rows against a different method (TOL_PRESSURE)
 TOL_HYBRID = 4.0
@@ -915,16 +917,16 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
 
         return lazy.get("hybrid", run)
 
-    def heel_decay_beam():
+    def heel_decay_beam(heel_deg=HEEL_DECAY_DEG):
         def run():
             mesh_for(0.0)
             sec, co, h0, th0 = b()
             lam = parametric_beam_wavelength(co)
             # the heeled side's waterline rises by half the beam times sin(heel)
             reach = 0.5 * HEEL_DECAY_STEEPNESS * lam + 0.5 * float(st["bwl"]) * np.sin(np.radians(HEEL_DECAY_DEG))
-            return heeled_roll_moment_with_decay(sec, st, co, rho, mesh_for(reach, None), h0, th0)
+            return heeled_roll_moment_with_decay(sec, st, co, rho, mesh_for(reach, None), h0, th0, heel_deg)
 
-        return lazy.get("heel_decay_beam", run)
+        return lazy.get(f"heel_decay_beam_{heel_deg:g}", run)
 
     def small_mesh():
         amp = 0.5 * SMALL_STEEPNESS * max(SMALL_RATIOS) * float(st["lwl"])
@@ -1071,34 +1073,23 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
                               f"across the beam (the sections' planar waterline's assumption) {r['planar']:+.1f} %")
         rows.append(row)
     # --- the heel's part of that roll moment in the waves of parametric roll (the restoring's
-    # variation, with the heeled section's decay terms) -> independent
-    row = _row(lambda: heel_decay_beam()["deviation"],
-               f"pressure decay, beam waves at twice the roll frequency, ship held at +-{HEEL_DECAY_DEG:g} deg: "
-               "heel's part of the roll moment vs pressure integration with decay", "%",
-               "half the difference of the roll moment's first harmonic about G between the two heels, by surface-"
-               "pressure integration on the hull mesh with the e^{kz} decay, the wave's phase linearised across the "
-               "beam, 90 deg, lambda = 2 pi g / (2 w_phi)^2, H/lambda = 1/100", "independent",
-               tolerance=TOL_HEEL_DECAY)
-    if row.status != "SKIPPED" and np.isfinite(row.value):
-        r = heel_decay_beam()
-        row.reference += (f": {r['reference']:.4g} N m (GM amplitude {r['gm_amplitude']:.3f} m) at lambda "
-                          f"{r['wavelength']:.1f} m")
-    rows.append(row)
-    # --- the same against the exact wave surface: the heeled section's phase across the beam, which
-    # the kernel still takes as linear (the parametric excitation of beam seas) -> independent
-    row = _row(lambda: heel_decay_beam()["exact"],
-               f"pressure decay, beam waves at twice the roll frequency, ship held at +-{HEEL_DECAY_DEG:g} deg: "
-               "heel's part of the roll moment vs pressure integration with decay on the exact wave surface", "%",
-               "half the difference of the roll moment's first harmonic about G between the two heels, by surface-"
-               "pressure integration on the hull mesh with the e^{kz} decay on the exact wave surface, 90 deg, "
-               "lambda = 2 pi g / (2 w_phi)^2, H/lambda = 1/100; the kernel's heeled sections take the phase as "
-               "linear across the beam", "independent", tolerance=TOL_HEEL_DECAY)
-    if row.status != "SKIPPED" and np.isfinite(row.value):
-        r = heel_decay_beam()
-        row.reference += (f": {r['exact_reference']:.4g} N m (GM amplitude {r['exact_gm_amplitude']:.3f} m; with "
-                          f"the phase linearised across the beam {r['gm_amplitude']:.3f} m) at lambda "
-                          f"{r['wavelength']:.1f} m")
-    rows.append(row)
+    # variation, with the heeled section's decay and cross-beam terms) against pressure integration
+    # on the exact surface: at a small heel (the terms are of the first order in it) and at
+    # HEEL_DECAY_DEG -> independent
+    for heel in (HEEL_DECAY_SMALL_DEG, HEEL_DECAY_DEG):
+        row = _row(lambda heel=heel: heel_decay_beam(heel)["exact"],
+                   f"pressure decay, beam waves at twice the roll frequency, ship held at +-{heel:g} deg: "
+                   "heel's part of the roll moment vs pressure integration with decay on the exact wave surface", "%",
+                   "half the difference of the roll moment's first harmonic about G between the two heels, by surface-"
+                   "pressure integration on the hull mesh with the e^{kz} decay on the exact wave surface, 90 deg, "
+                   "lambda = 2 pi g / (2 w_phi)^2, H/lambda = 1/100; the kernel's heeled-section terms are of the "
+                   "first order in the heel", "independent", tolerance=TOL_HEEL_DECAY)
+        if row.status != "SKIPPED" and np.isfinite(row.value):
+            r = heel_decay_beam(heel)
+            row.reference += (f": {r['exact_reference']:.4g} N m (GM amplitude {r['exact_gm_amplitude']:.3f} m; with "
+                              f"the phase linearised across the beam {r['gm_amplitude']:.3f} m) at lambda "
+                              f"{r['wavelength']:.1f} m")
+        rows.append(row)
     # --- the hybrid model's excitation (kernel FK + Capytaine diffraction, dynamics.diffraction) against
     # Capytaine's FK + diffraction: the FK from a different method (panels) -> independent
     for name, label in (("roll", "roll at the roll frequency"), ("heave", "heave at twice the roll frequency")):
