@@ -187,8 +187,8 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     F1, Z1, Y1, X1, D1 = model.decay.moments(k[:1], np.sin(b))
     Xe, De = model.decay.moments(k[:1], 1.0)[3:]
     k0 = k[0]
-    unit = (1.0, 1.0, k0, k0, 1.0 / k0, -1.0 / k0)
-    remainders = [unit[q] * d for q in range(6) for d in (D1[q], De[q])]
+    unit = ((0, 1.0), (1, 1.0), (2, k0), (3, k0), (5, 1.0 / k0), (4, -1.0 / k0))
+    remainders = [f * d for q, f in unit for d in (D1[q], De[q])]
     np.testing.assert_allclose(one.decay_coef[0, 0] * one.decay_weights,
                                0.5 * k0 * np.column_stack([F1, Z1, k0 * Y1, *model.decay.heel_weights(k[:1]),
                                                            X1 / k0, Xe / k0, *remainders]),

@@ -289,9 +289,12 @@ def decay_matrix(amp, k, decay, sin_beta: float = 0.0):
     nst = F.shape[0]
     ak = (amp * k)[:, None]
     kk = k[None, :]
-    # the remainders in the units of the blocks they correct (a_n k_n times these)
-    unit = (lambda d: d, lambda d: d, lambda d: kk * d, lambda d: kk * d, lambda d: d / kk, lambda d: -d / kk)
-    remainders = [unit[q](d) for q in range(6) for d in (Da[q], Db[q])]
+    # the remainders in the order of DECAY_REMAINDER_BLOCKS and the units of the blocks they correct
+    # (a_n k_n times these): dF, dZ, k dY_r, k dY_y, then W_2's (X + dF_y) / k (D[5]) and W_3's
+    # -Gamma_B / k (D[4])
+    unit = ((0, lambda d: d), (1, lambda d: d), (2, lambda d: kk * d), (3, lambda d: kk * d), (5, lambda d: d / kk),
+            (4, lambda d: -d / kk))
+    remainders = [f(d) for q, f in unit for d in (Da[q], Db[q])]
     M = np.concatenate([F, Z, Y * kk, *decay.heel_weights(k, (F, Z, Y)), Xa / kk, Xb / kk, *remainders]).T * ak
     norm = np.sqrt(np.sum(M**2, axis=0))
     full = np.ones_like(norm)
