@@ -245,7 +245,8 @@ DECAY_SLICES = 64
 #: (beam waves at 2 w_phi, +-2 degree, against pressure integration on the exact surface: DTMB 5415
 #: 8.9 / 5.7 / 1.5 / 5.8 / 30.5 % and the trawler 3.5 / 3.1 / 2.9 / 12.4 / 29.3 % at bands 0.005 /
 #: 0.01 / 0.02 / 0.05 / 0.1; stabflow measurement 2026-12-07): the hull sections' polygons make the
-#: local slope a noisy quantity; 0.02 is the central secant over +-0.13 m (trawler) to +-0.4 m.
+#: local slope a noisy quantity; 0.02, the central secant over +-0.13 m (trawler) to +-0.4 m, was
+#: chosen after these measurements, one value for all ships.
 FLARE_BAND = 0.02
 
 
