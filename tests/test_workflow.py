@@ -30,6 +30,8 @@ def test_lint_clean():
 
 GM_EXACT_VARIATION = ("GM in quartering waves lambda = L, H = T/3, ship held: first-harmonic variation vs pressure "
                       "integration (exact wave surface)")
+HEEL_EXACT_10 = ("pressure decay, beam waves at twice the roll frequency, ship held at +-10 deg: heel's part of the "
+                 "roll moment vs pressure integration with decay on the exact wave surface")
 BEAM_HEAVE = ("d2phi/dzdt option, beam waves at twice the roll frequency, H/lambda = 1/500: heave vs pressure "
               "integration with decay")
 HYBRID = [f"diffraction option, beam waves, ship held: {label}, kernel FK with decay + Capytaine diffraction vs "
@@ -47,8 +49,10 @@ def test_netcdf_outputs(pipeline):
                 # the expected FAIL: the planar waterline's GM variation against the exact surface
                 # (barge +24.8 %), README time-domain model; its heave in short beam waves, +12 % and
                 # +11.7 % with the diffraction option before the cross-beam correction (2026-12-07),
-                # passes now (README: within 0.1 %)
-                expected = [GM_EXACT_VARIATION] if (ship, step) == ("barge", "dynamics") else []
+                # passes now (README: within 0.1 %); and the heel's part of the roll moment in beam waves
+                # at +-10 deg against the exact surface (7.8 %: the heeled section's cross-beam terms are
+                # of the first order in the heel; at +-2 deg 0.8 %, PASS)
+                expected = [GM_EXACT_VARIATION, HEEL_EXACT_10] if (ship, step) == ("barge", "dynamics") else []
                 assert fails == expected, (ship, step, fails)
                 if (ship, step) == ("barge", "dynamics"):
                     names = [str(n) for n in ds.name.values]
