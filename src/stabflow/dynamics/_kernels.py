@@ -155,7 +155,9 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
     phase's variation across the beam also runs along body z (y' = y cos phi - z sin phi), whose
     roll moment (rho g k sin^2(beta) cos psi_0 sin phi cos phi int (y^2 - (z - z_G)^2) e^(k z) dA)
     neither this term nor T_yy carries; the y^2 half alone, put in through the rotated lever, changed
-    the DSA's barge rate by -36 % and the trawler's by +69 %, more than the term it stood for.
+    the DSA's barge rate by -36 % and the trawler's by +69 %, more than the term it stood for (since
+    2026-12-07 the heeled section's cross-beam terms in H_2, H_3 carry the exact phase's heel part
+    to first order, ``SectionDecay.moments``' Gamma_B).
     Heeled, the decayed pressure's first moment across the beam, I_y = int y e^(k z) dA (earth y
     from G, z below the calm waterline), is not F int y dA: to first order in the heel the rotated
     calm section gives sin(phi) A (k Y - Z - zeta_c F) (A its area, zeta_c its centroid's height
@@ -170,7 +172,8 @@ def _fkhs(xs, dx, ys, zs, npts, tab, lim, rho, g, xg, zg, h, phi, theta, cb, sb,
     of the roll moment's first harmonic was 15-116 % off without them; the vertical force's 3-30 %
     and the pitch moment's up to 24 % of their upright first harmonics.
     The wave's phase varies across the beam, which the sections' planar waterline and the area
-    averages above take as linear: with the decay, column 13 carries the linear vertical force's
+    averages above take as linear (the table's columns 3-6 and 8-9 carry their cross-beam
+    remainders since 2026-12-07, ``waves.synthesis``): with the decay, column 13 carries the linear vertical force's
     remainder W = sum a X cos psi per unit length [m^2] (``SectionDecay.moments``' X: the
     waterline's sinc(k_y b / 2) and the decaying pressure's cos(k_y y) across each slice), added as
     rho g W dx on the section's centreline at x_i (nothing at a dry section), so it adds to the
@@ -876,13 +879,13 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
     mid-depths, areas, centroid offsets, int y^2 dA and its upper-minus-lower halves (nst, ns), section
     areas (nst,)); a dry station (area 0) gets F = 1, Z = Y = 0. One pass over the slices per station
     and wave number (``SectionDecay.moments`` documents the slice integrals). With ``X`` (nb, nst, nc)
-    and ``D`` (nb, 4, nst, nc), the cross-beam remainders for waves of heading sines ``sbs`` (nb,)
+    and ``D`` (nb, 6, nst, nc), the cross-beam remainders for waves of heading sines ``sbs`` (nb,)
     (``SectionDecay.moments``), k_y = k sin(beta), b the calm waterline breadth ``beam_wl`` (nst,)
     and B each slice's breadth ``breadth`` (nst, ns): X = b (sinc(k_y b / 2) - 1) - k int e^(k z)
-    (sinc(k_y B / 2) - 1) dA [m^2], then dF = int e^(k z) (sinc - 1) dA / A, dZ = int (z - z_c)
+    (sinc(k_y B / 2) - 1) dA [m], then dF = int e^(k z) (sinc - 1) dA / A, dZ = int (z - z_c)
     e^(k z) (sinc - 1) dA / A [m], dY_r = dY_y - b^3 (R(k_y b / 2) - 1) / (12 k A) [m^2] and
     dY_y = int y^2 e^(k z) (R(k_y B / 2) - 1) dA / A [m^2] (``_crossbeam_ratios``), in this order
-    along D's second axis, then the heeled section's: Gamma_B [m^3] and X + dF_y [m^2]
+    along D's second axis, then the heeled section's: Gamma_B [m^2] and X + dF_y [m]
     (``SectionDecay.moments``; ``flare`` (nst,) the half breadth's slope at the calm waterline,
     ``origin`` (nst,) the body origin's height above it [m]); all 0 at a dry station and in head and
     following waves."""
@@ -995,7 +998,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
             Z[i, n] = first / a_i - zc * F[i, n]
             Y[i, n] = y / a_i
             for b in range(nb):
-                if sbs[b] == 0.0:  # head and following waves: none
+                if sbs[b] == 0.0 or k[n] <= 0.0:  # head and following waves (and k = 0): none
                     X[b, i, n] = 0.0
                     for q in range(6):
                         D[b, q, i, n] = 0.0

@@ -592,15 +592,17 @@ def heeled_roll_moment_with_decay(sec: Sections, st: xr.Dataset, co: Coefficient
     the difference of the roll moment's first harmonic (complex) about G between +-``heel_deg`` of
     heel, the ship otherwise at its calm-water pose (body origin at ``h0``, trim ``th0``), of the
     kernel with the pressure decay (the DSA's kernel: with the heeled section's decay terms,
-    ``_kernels._fkhs``) against surface-pressure integration with the e^(k z) decay on the hull
-    mesh, the wave's phase linearised across the beam (``waterline="planar"``): the variation of
-    the restoring in these waves, GM(t) = -dMx/dphi / (rho g V), which drives parametric roll.
+    ``_kernels._fkhs``, and their cross-beam terms, ``SectionDecay.moments``' D) against
+    surface-pressure integration with the e^(k z) decay on the hull mesh, the wave's phase
+    linearised across the beam (``waterline="planar"``, the heeled terms' assumption before the
+    cross-beam terms): the variation of the restoring in these waves, GM(t) = -dMx/dphi / (rho g V),
+    which drives parametric roll.
 
     Returns ``deviation`` [%] (|kernel - reference| / |reference|), the ``wavelength`` [m] and the
     reference's amplitude ``reference`` [N m] and its ``gm_amplitude`` [m] (divided by rho g V
     sin(heel)); and the same against pressure integration with decay on the exact wave surface:
-    ``exact`` [%], ``exact_reference`` [N m], ``exact_gm_amplitude`` [m] (the kernel's heeled
-    section still takes the phase as linear across the beam, ``_kernels._fkhs``)."""
+    ``exact`` [%], ``exact_reference`` [N m], ``exact_gm_amplitude`` [m] (the validation rows'
+    reference; the kernel's heeled-section cross-beam terms are of the first order in the heel)."""
     from stabflow.dynamics.model import section_decay
 
     lam = parametric_beam_wavelength(co)

@@ -133,7 +133,9 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     moment about the centroid S_hz = -sum a k Z sin psi [m], T_yy = sum a k^2 Y sin psi [m] and
     U_yy = -sum a k^2 Y cos psi [m], then the heeled section's six terms H_1 ... H_6
     (``dynamics._kernels``) and the cross-beam correction W = sum a X cos psi [m^2]
-    (``SectionDecay.moments``' X at this heading), 14 columns; None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
+    (``SectionDecay.moments``' X at this heading), 14 columns; S_h, S_hz, T_yy, U_yy and the heeled
+    H_2, H_3 with their cross-beam remainders (``SectionDecay.moments``' D: F + dF, Z + dZ, Y + dY_r,
+    Y + dY_y, w_2 + (X + dF_y) / k, w_3 - Gamma_B / k; none with ``curvature``); None leaves it out (nq = 2). ``curvature`` adds the second derivative along the direction of
     propagation eta_xixi [1/m] for the curved waterline across each section
     (``waterline="curved"``, the last column: nq = 4, the dphi_zt column then zero, or 15 with
     ``decay``). Each quantity is sum_n [C_in cos(we_n t) + D_in sin(we_n t)], so
@@ -223,10 +225,11 @@ def decay_factors(amp, k, decay, sin_beta: float = 0.0):
     six terms a_n k_n w_i(k_n) ~ sum_j W_ij C_nj (w of ``SectionDecay.heel_weights``) and the
     cross-beam correction a_n X_i(k_n) ~ sum_j WX_ij C_nj (X of ``SectionDecay.moments`` at the two
     nodes of :func:`crossbeam_node` for the course's heading sine ``sin_beta``), and at the same
-    nodes the remainders of the horizontal terms, a_n k_n (dF, dZ, k dY_r, k dY_y) (D of
-    ``SectionDecay.moments``; ``DECAY_REMAINDER_BLOCKS``): one
+    nodes the remainders of the horizontal terms, a_n k_n (dF, dZ, k dY_r, k dY_y), and of the
+    heeled W_2 and W_3, a_n (X + dF_y) and -a_n Gamma_B (D of ``SectionDecay.moments``;
+    ``DECAY_REMAINDER_BLOCKS``): one
     truncated singular value decomposition of the (component, ``DECAY_BLOCKS`` x station) matrix
-    of the nineteen, each station's column scaled to unit norm, the cross-beam columns to the norm of
+    of the twenty-three, each station's column scaled to unit norm, the cross-beam columns to the norm of
     the term they correct where that is larger (X: the planar waterline's linear vertical force
     a_n (b_i - k_n A_i F_i); the remainders: their upright block's column), so that a correction is
     carried to 1 % of the station's term, not of itself. Its r is the least for which every column's residual norm over the components (the
@@ -234,7 +237,8 @@ def decay_factors(amp, k, decay, sin_beta: float = 0.0):
     the column's scale, at most ``DECAY_RANK_MAX`` (a RuntimeWarning names the error left if that
     is not enough). Returns the line factors C (nc, r) and the station
     weights (nst, ``DECAY_BLOCKS`` r): WF, WZ, WY, the six heeled ones, WX_a, WX_b and the
-    remainders' eight (WdF_a, WdF_b, WdZ_a, WdZ_b, WdYr_a, WdYr_b, WdYy_a, WdYy_b), each factor's sign
+    remainders' twelve (WdF_a, WdF_b, WdZ_a, WdZ_b, WdYr_a, WdYr_b, WdYy_a, WdYy_b, then W_2's and W_3's
+    at the two nodes: a_n (X + dF_y) and -a_n Gamma_B), each factor's sign
     chosen so that its weights WF sum to >= 0 (one regular wave's weights then do not depend on
     its amplitude's sign)."""
     M, norm, full = decay_matrix(amp, k, decay, sin_beta)
@@ -336,7 +340,8 @@ class LineWaves:
         instantaneous relative heading, :func:`crossbeam_node`), where WF' = WF + L_a WdF_a + L_b WdF_b
         and likewise WZ', WY_r and WY_y (the horizontal terms' cross-beam remainders), with
         ``decay_weights`` (nst, ``DECAY_BLOCKS`` r) = (WF, WZ, WY, W_1 ... W_6, WX_a, WX_b, WdF_a,
-        WdF_b, WdZ_a, WdZ_b, WdYr_a, WdYr_b, WdYy_a, WdYy_b).
+        WdF_b, WdZ_a, WdZ_b, WdYr_a, WdYr_b, WdYy_a, WdYy_b, W2_a, W2_b, W3_a, W3_b; the heeled W_2 and
+        W_3 take their cross-beam remainders the same way).
     """
 
     def __init__(self, amp, omega, phase, heading_deg: float, speed: float, decay=None):
