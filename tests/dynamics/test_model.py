@@ -133,11 +133,12 @@ def test_box_heave_force_in_beam_waves_against_linear_theory(barge, wavelength):
 
 
 def test_crossbeam_ratios_against_exact_series():
-    """``_kernels._crossbeam_ratios``: sinc(u) - 1 and R(u) - 1 = 3 (sin u - u cos u) / u^3 - 1
-    against their Taylor series summed in exact rational arithmetic (60 terms) at u from 1e-6 to 6,
-    either side of the switch at |u| = 0.5 included: within 5e-14 of each value (measured: sinc - 1
-    within 5.1e-16; R - 1 within 2.9e-16 but 1.6e-14 and 2.2e-14 either side of the switch, where
-    the closed form loses digits to cancellation twice: sin u - u cos u, then R - 1)."""
+    """``_kernels._crossbeam_ratios``: sinc(u) - 1, R(u) - 1 = 3 (sin u - u cos u) / u^3 - 1 and
+    P(u) - 1 = 3 (u^2 sin u + 2 u cos u - 2 sin u) / u^3 - 1 against their Taylor series summed in
+    exact rational arithmetic (60 terms) at u from 1e-6 to 6, either side of the switch at |u| = 0.5
+    included: within 5e-14 of each value (measured: sinc - 1 within 5.1e-16; R - 1 and P - 1 within
+    3e-16 but up to 2.3e-14 either side of the switch, where the closed form loses digits to
+    cancellation twice)."""
     from fractions import Fraction
     from math import factorial
 
@@ -147,8 +148,10 @@ def test_crossbeam_ratios_against_exact_series():
         q = Fraction(u) ** 2
         s = sum(Fraction((-1) ** n, factorial(2 * n + 1)) * q**n for n in range(1, 60))
         r = sum(Fraction((-1) ** (n + 1) * 6 * n, factorial(2 * n + 1)) * q ** (n - 1) for n in range(2, 60))
+        p = sum(Fraction((-1) ** n * 3, (2 * n + 3) * factorial(2 * n)) * q**n for n in range(1, 60))
         got = _crossbeam_ratios(u)
-        for g, e in zip(got, (float(s), float(r))):
+        assert len(got) == 3
+        for g, e in zip(got, (float(s), float(r), float(p))):
             assert abs(g - e) <= 5e-14 * abs(e), (u, g, e)
 
 

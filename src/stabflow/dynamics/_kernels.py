@@ -828,38 +828,30 @@ def _r1_record_last(rng, nsteps, dt, phi, chol_q, chol_s, q, tab, cap, exc):
 
 @njit(cache=True, inline="always")
 def _crossbeam_ratios(u):
-    """(sinc(u) - 1, R(u) - 1) for u = k_y B / 2 of a strip of breadth B across a wave of wave
-    number k_y: sinc(u) = sin(u) / u is the strip's mean of cos(k_y y), R(u) = 3 (sin u - u cos u)
-    / u^3 the ratio of int y sin(k_y y) dy to its linearisation k_y int y^2 dy. By their Taylor
-    series (Horner) below |u| 0.5, the last term there about 1e-15 of the first (no cancellation,
-    no sine), else closed form."""
+    """(sinc(u) - 1, R(u) - 1, P(u) - 1) for u = k_y B / 2 of a strip of breadth B across a wave of
+    wave number k_y: sinc(u) = sin(u) / u is the strip's mean of cos(k_y y), R(u) = 3 (sin u -
+    u cos u) / u^3 the ratio of int y sin(k_y y) dy to its linearisation k_y int y^2 dy and
+    P(u) = 3 (u^2 sin u + 2 u cos u - 2 sin u) / u^3 that of int y^2 cos(k_y y) dy to int y^2 dy.
+    By their Taylor series (Horner) below |u| 0.5, the last term there about 1e-15 of the first
+    (no cancellation, no sine; R - 1 = sum_{n >= 2} (-1)^(n+1) 6 n u^(2n-2) / (2n+1)!,
+    P - 1 = sum_{n >= 1} (-1)^n 3 u^(2n) / ((2n + 3) (2n)!)), else closed form from one sine and
+    cosine."""
     x = u * u
     if x < 0.25:
         s = -x / 6.0 * (1.0 - x / 20.0 * (1.0 - x / 42.0 * (1.0 - x / 72.0 * (1.0 - x / 110.0 * (1.0 - x / 156.0 * (
             1.0 - x / 210.0))))))
-        # R - 1 = sum_{n >= 2} (-1)^(n+1) 6 n u^(2n-2) / (2n+1)!: terms' ratio -x n' / (n (2n+2)(2n+3)), n' = n + 1
+        # R's terms' ratio -x n' / (n (2n+2)(2n+3)), n' = n + 1
         r = -x / 10.0 * (1.0 - x * 3.0 / (2.0 * 6.0 * 7.0) * (1.0 - x * 4.0 / (3.0 * 8.0 * 9.0) * (
             1.0 - x * 5.0 / (4.0 * 10.0 * 11.0) * (1.0 - x * 6.0 / (5.0 * 12.0 * 13.0) * (
                 1.0 - x * 7.0 / (6.0 * 14.0 * 15.0))))))
-        return s, r
-    sn = math.sin(u)
-    return sn / u - 1.0, 3.0 * (sn - u * math.cos(u)) / (x * u) - 1.0
-
-
-@njit(cache=True, inline="always")
-def _crossbeam_ratios3(u):
-    """``_crossbeam_ratios`` and P(u) - 1, P(u) = 3 (u^2 sin u + 2 u cos u - 2 sin u) / u^3 the ratio
-    of int y^2 cos(k_y y) dy to int y^2 dy over a strip of breadth B (u = k_y B / 2): series below
-    |u| 0.5 (P - 1 = sum_{n >= 1} (-1)^n 3 u^(2n) / ((2n + 3) (2n)!)), else closed form."""
-    s, r = _crossbeam_ratios(u)
-    x = u * u
-    if x < 0.25:
         p = -0.3 * x * (1.0 - x * 5.0 / (7.0 * 3.0 * 4.0) * (1.0 - x * 7.0 / (9.0 * 5.0 * 6.0) * (
             1.0 - x * 9.0 / (11.0 * 7.0 * 8.0) * (1.0 - x * 11.0 / (13.0 * 9.0 * 10.0) * (
                 1.0 - x * 13.0 / (15.0 * 11.0 * 12.0))))))
         return s, r, p
     sn = math.sin(u)
-    return s, r, 3.0 * (x * sn + 2.0 * u * math.cos(u) - 2.0 * sn) / (x * u) - 1.0
+    cs = math.cos(u)
+    return (sn / u - 1.0, 3.0 * (sn - u * cs) / (x * u) - 1.0,
+            3.0 * (x * sn + 2.0 * u * cs - 2.0 * sn) / (x * u) - 1.0)
 
 
 @njit(cache=True, inline="always")
@@ -892,17 +884,12 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
     nst, ns = area.shape
     nc = k.shape[0]
     nb = X.shape[0]
-    xb = np.zeros(nb)  # int e^(k z) (sinc(k_y B / 2) - 1) dA for each heading
-    zb = np.zeros(nb)  # int z e^(k z) (sinc(k_y B / 2) - 1) dA
-    yb = np.zeros(nb)  # int y^2 e^(k z) (R(k_y B / 2) - 1) dA
-    # the heeled section's integrals (``SectionDecay.moments``): int e^(k z) (1, z, z^2) sinc dA,
-    # int y^2 e^(k z) (1, z) R dA and int y^2 e^(k z) (P - 1) dA
-    hs0 = np.zeros(nb)
-    hs1 = np.zeros(nb)
-    hs2 = np.zeros(nb)
-    hr0 = np.zeros(nb)
-    hr1 = np.zeros(nb)
-    hp0 = np.zeros(nb)
+    # the cross-beam slice sums for each heading: int e^(k z) (sinc - 1) dA, int z e^(k z) (sinc - 1) dA,
+    # int y^2 e^(k z) (R - 1) dA (sinc, R of k_y B / 2), and the heeled section's
+    # (``SectionDecay.moments``): int e^(k z) (1, z, z^2) sinc dA, int y^2 e^(k z) (1, z) R dA and
+    # int y^2 e^(k z) (P - 1) dA
+    acc = np.zeros((9, nb))
+    xb, zb, yb, hs0, hs1, hs2, hr0, hr1, hp0 = acc[0], acc[1], acc[2], acc[3], acc[4], acc[5], acc[6], acc[7], acc[8]
     c = np.empty(ns)  # 3 (slice centroid - mid-height) / h of a station's slices
     for i in range(nst):
         a_i = total[i]
@@ -964,16 +951,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
             if nb > 0:
                 # the cross-beam integrals in a second pass over the slices (the same e^(k z_m) and
                 # slice integrals), so that the pass above stays as fast without them
-                for b in range(nb):
-                    xb[b] = 0.0
-                    zb[b] = 0.0
-                    yb[b] = 0.0
-                    hs0[b] = 0.0
-                    hs1[b] = 0.0
-                    hs2[b] = 0.0
-                    hr0[b] = 0.0
-                    hr1[b] = 0.0
-                    hp0[b] = 0.0
+                acc[:, :] = 0.0
                 e = 1.0
                 for j in range(ns):
                     e = _slice_exp(e, j, rec, step, depth[i, j], k[n])
@@ -984,7 +962,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                     eyy = e * (yy[i, j] * s1 + 2.0 * yy_tilt[i, j] * s2)
                     for b in range(nb):
                         if sbs[b] != 0.0:
-                            ds, dr, dp = _crossbeam_ratios3(0.5 * k[n] * sbs[b] * breadth[i, j])
+                            ds, dr, dp = _crossbeam_ratios(0.5 * k[n] * sbs[b] * breadth[i, j])
                             xb[b] += eaw * ds
                             zb[b] += eaz * ds
                             yb[b] += eyy * dr
@@ -1005,7 +983,7 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                 else:
                     bw = beam_wl[i]
                     ub = 0.5 * k[n] * sbs[b] * bw
-                    ds, dr, dp = _crossbeam_ratios3(ub)
+                    ds, dr, dp = _crossbeam_ratios(ub)
                     X[b, i, n] = bw * ds - k[n] * xb[b]
                     df = xb[b] / a_i
                     D[b, 0, i, n] = df
