@@ -1009,3 +1009,24 @@ def _decay_moments(k, half_height, depth, area, offset, yy, yy_tilt, total, F, Z
                     dfy = zc2 - kn * yc1 + wl_yc1 - zo * c2
                     D[b, 4, i, n] = dmo + zo * dfy
                     D[b, 5, i, n] = X[b, i, n] + dfy
+
+
+@njit(cache=True)
+def _lagrange_nodes(k, h, tab, out):
+    """Fill ``out`` (nq, nst, nc) with the four-point Lagrange (cubic) interpolant at the wave
+    numbers ``k`` (nc,) >= 0 [1/m] of ``tab`` (nn, nq, nst), tabulated at k = j ``h``, j = 0 ... nn - 1
+    (nn >= 4): nodes j0 ... j0 + 3 with j0 = floor(k / h) - 1 (0 in the first interval, nn - 4 past
+    the last but one), exact at the nodes and for cubics (``model.SectionDecay.tabulated``)."""
+    nn, nq, nst = tab.shape
+    for n in range(k.shape[0]):
+        u = k[n] / h
+        j0 = min(max(int(math.floor(u)) - 1, 0), nn - 4)
+        t = u - j0
+        w0 = -(t - 1.0) * (t - 2.0) * (t - 3.0) / 6.0
+        w1 = t * (t - 2.0) * (t - 3.0) / 2.0
+        w2 = -t * (t - 1.0) * (t - 3.0) / 2.0
+        w3 = t * (t - 1.0) * (t - 2.0) / 6.0
+        for q in range(nq):
+            for i in range(nst):
+                out[q, i, n] = (w0 * tab[j0, q, i] + w1 * tab[j0 + 1, q, i] + w2 * tab[j0 + 2, q, i]
+                                + w3 * tab[j0 + 3, q, i])

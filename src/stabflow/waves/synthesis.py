@@ -127,7 +127,8 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
 
     S is the slope along the direction of propagation (eta_x = cos(beta) S, eta_y = sin(beta) S).
     ``decay`` (:class:`stabflow.dynamics.model.SectionDecay`: the sections' area averages F_i(k),
-    Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z), and the cross-beam correction X_i(k)) adds the pressure's decay with
+    Z_i(k), Y_i(k) of e^(k z), (z - z_c) e^(k z) and y^2 e^(k z), and the cross-beam correction X_i(k),
+    interpolated on its wave-number grid, ``SectionDecay.tabulated``) adds the pressure's decay with
     depth as twelve columns (nq = 14, ``dynamics._kernels``'s layouts): the d2phi/dzdt term
     -g sum_n a_n k_n F_i(k_n) cos psi_n, the area-averaged slope S_h = -sum a k F sin psi, its
     moment about the centroid S_hz = -sum a k Z sin psi [m], T_yy = sum a k^2 Y sin psi [m] and
@@ -157,7 +158,7 @@ def station_wave_table(amp, omega, phase, xs, heading_deg, speed, times, decay=N
     if decay is not None:
         # dphi_zt = -g sum a k F cos psi, S_h = -sum a k F sin psi, S_hz = -sum a k Z sin psi,
         # T_yy = sum a k^2 Y sin psi, U_yy = -sum a k^2 Y cos psi
-        F, Z, Y, X, (dF, dZ, dYr, dYy, gB, xf) = decay.moments(k, np.sin(np.radians(heading_deg)))
+        F, Z, Y, X, (dF, dZ, dYr, dYy, gB, xf) = decay.tabulated(k, np.sin(np.radians(heading_deg)))
         if curvature:
             # the curved waterline's parabola carries a part of the cross-beam phase (``_kernels._fkhs``)
             dF = dZ = dYr = dYy = gB = xf = 0.0
@@ -217,7 +218,8 @@ def decay_factors(amp, k, decay, sin_beta: float = 0.0):
     """The stations' pressure-decay terms (``dynamics._kernels``'s layouts: dphi_zt, S_h, S_hz, T_yy, U_yy)
     as sums of r products of a station weight and a line quantity.
 
-    With F_i(k), Z_i(k), Y_i(k) of :class:`stabflow.dynamics.model.SectionDecay` ``decay``, the
+    With F_i(k), Z_i(k), Y_i(k) of :class:`stabflow.dynamics.model.SectionDecay` ``decay`` (interpolated
+    on its wave-number grid, ``SectionDecay.tabulated``), the
     terms -g sum_n a_n k_n F_i(k_n) cos psi_n, -sum_n a_n k_n F_i(k_n) sin psi_n,
     -sum_n a_n k_n Z_i(k_n) sin psi_n, sum_n a_n k_n^2 Y_i(k_n) sin psi_n and
     -sum_n a_n k_n^2 Y_i(k_n) cos psi_n need
@@ -289,7 +291,7 @@ def decay_matrix(amp, k, decay, sin_beta: float = 0.0):
     amp = np.asarray(amp, float)
     k = np.asarray(k, float)
     ua = crossbeam_node(float(sin_beta))
-    F, Z, Y, (Xa, Xb), (Da, Db) = decay.moments(k, (np.sqrt(ua), 1.0))  # (nst, nc) each, one pass
+    F, Z, Y, (Xa, Xb), (Da, Db) = decay.tabulated(k, (np.sqrt(ua), 1.0))  # (nst, nc) each
     nst = F.shape[0]
     ak = (amp * k)[:, None]
     kk = k[None, :]
