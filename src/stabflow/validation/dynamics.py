@@ -54,7 +54,7 @@ Volume-based vs pressure integration (6 rows, independent; tolerance 4 %)
     10,000 triangles (the DTC's 116,062 cost about 50 ms per load evaluation, some 5 min per record;
     the reference runs on the box barge), and hulls whose topsides are replaced in the config
     (``hull.topside``: the STL keeps the original ones, which these waves reach).
-GM in waves, ship held (6 rows, independent)
+GM in waves, ship held (8 rows, independent)
     The same wave as above (lambda = L_wl, H = T/3, 45 deg, zero speed), the ship held at its
     calm-water equilibrium: GM(t) = -dMx/dphi / (rho g V) at +-1 deg heel, 24 instants over one
     period (:func:`restoring_in_waves`), its mean and first-harmonic amplitude (the variation that
@@ -76,6 +76,15 @@ GM in waves, ship held (6 rows, independent)
     * *the curved waterline against the exact surface* (tolerance 4 %): mean / variation barge
       +0.01 / -0.39 %, dtmb5415 +0.20 / +0.75 %, dtc +0.01 / +0.03 %, trawler +0.08 / -4.07 %
       (FAIL: k_y B / 2 = 0.69, where the quadratic term starts to fall short).
+    * *the kernel with the pressure decay against pressure integration with the e^(k z) decay on the
+      exact surface* (tolerance 4 %; since 2026-12-07, third session): the kernel the DSA, the 6-DOF
+      records and the decay ensembles run, whose sections carry the phase across the beam through
+      the decay's cross-beam and heeled-section terms (``SectionDecay.moments``' X and D) on the
+      planar waterline. Measured mean / variation: barge +0.28 / +0.23 %, dtmb5415 +0.20 / +0.02 %,
+      dtc +0.29 / -0.35 %, trawler +1.01 / -7.2 % (0.0560 against 0.0603 m, phase +46.4 against
+      +43.4 deg: FAIL; at H = T/10 -1.7 %, T/30 -4.2 %: the heeled terms are first order in the
+      wave's phase across the beam and take the side's slope at the waterline, FLARE_BAND). Paper
+      000's planar kernel (decay off) is +24.8 / +5.8 / +5.4 / +71 % off the same quantity.
 
     SKIPPED as the rows above except for the face limit.
 Small waves vs the linear frequency-domain solution (6 rows, consistency)
@@ -181,7 +190,7 @@ from stabflow.config import Ship
 from stabflow.dynamics import Coefficients, simulate
 from stabflow.dynamics.linear import KernelLoads, fk_excitation, linear_response, stiffness_matrix
 from stabflow.dynamics.pressure import PressureModel, simulate_pressure
-from stabflow.dynamics.model import config_coefficients, initial_state, parameters
+from stabflow.dynamics.model import config_coefficients, initial_state, parameters, section_decay
 from stabflow.dynamics._kernels import S_PITCH, S_ROLL, S_Z
 from stabflow.dynamics.rao import first_harmonic, rao_sweep
 from stabflow.geometry import Sections
@@ -447,11 +456,16 @@ def restoring_in_waves(sec: Sections, st: xr.Dataset, rho: float, mesh, lam: flo
     integration on ``mesh`` (decay off), once with the sections' planar waterline
     (``waterline="planar"``, the kernel's default assumption) and once with the exact wave surface.
 
+    And with the incident pressure's decay with depth on both sides: the kernel with the sections'
+    decay (``dphi_dzdt``, the DSA's, the 6-DOF records' and the decay ensembles' kernel, with its
+    cross-beam and heeled-section terms) against pressure integration with the e^(k z) decay on
+    the exact wave surface.
+
     Returns
     -------
     dict
-        ``volume``, ``curved``, ``planar``, ``exact`` -> (mean [m], first-harmonic amplitude [m],
-        its phase [degree]).
+        ``volume``, ``curved``, ``planar``, ``exact``, ``volume_decay``, ``exact_decay`` -> (mean [m],
+        first-harmonic amplitude [m], its phase [degree]).
     """
     V, lcg, kg = float(st["volume"]), float(st["lcg"]), float(st["kg"])
     h0, th0, _ = equilibrium(sec, V, lcg, kg)
@@ -462,7 +476,9 @@ def restoring_in_waves(sec: Sections, st: xr.Dataset, rho: float, mesh, lam: flo
     models = {"volume": KernelLoads(sec, rho, lcg, kg, W, heading_deg),
               "curved": KernelLoads(sec, rho, lcg, kg, W, heading_deg, waterline="curved"),
               "planar": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0, waterline="planar"),
-              "exact": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0)}
+              "exact": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0),
+              "volume_decay": KernelLoads(sec, rho, lcg, kg, W, heading_deg, 0.0, section_decay(sec, h0, th0)),
+              "exact_decay": PressureModel(mesh[0], mesh[1], rho, lcg, kg, W, heading_deg, 0.0, decay=True)}
     out = {}
     for name, m in models.items():
         gm = np.array([-(m.loads(t, h0, d, th0)[3] - m.loads(t, h0, -d, th0)[3]) / (2 * d * rho * G * V) for t in ts])
@@ -516,7 +532,6 @@ def roll_excitation_with_decay(sec: Sections, st: xr.Dataset, co: Coefficients, 
     pressure integration with decay and the wave's phase linearised across the beam, the sections'
     planar waterline's assumption before the cross-beam remainders - 1), the ``wavelength`` [m]
     and the reference moment ``reference`` [N m]."""
-    from stabflow.dynamics.model import section_decay
 
     lam = float(2 * np.pi * G / (factor * co.natural_frequency("roll")) ** 2)
     W = regular(lam / 500.0, lam)
@@ -563,7 +578,6 @@ def hybrid_excitation(mesh, sec: Sections, st: xr.Dataset, co: Coefficients, rho
     hulls whose panels do not resolve the wave at 2 w_phi."""
     from stabflow.dynamics.diffraction import DOFS6, diffraction_dataset, generalized, resolved_omega
     from stabflow.dynamics.hydro import lidded_body
-    from stabflow.dynamics.model import section_decay
 
     lcg, kg = float(st["lcg"]), float(st["kg"])
     body = lidded_body(mesh, h0, th0, lcg, kg, DOFS6)
@@ -607,7 +621,6 @@ def heeled_roll_moment_with_decay(sec: Sections, st: xr.Dataset, co: Coefficient
     wave's phase linearised across the beam (``waterline="planar"``, the heeled terms' assumption
     before their cross-beam terms).
     """
-    from stabflow.dynamics.model import section_decay
 
     lam = parametric_beam_wavelength(co)
     W = regular(HEEL_DECAY_STEEPNESS * lam, lam)
@@ -1005,14 +1018,20 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
          (TOL_GM_PLANAR_MEAN, TOL_GM_PLANAR)),
         ("volume", "exact", "pressure integration (exact wave surface)", (TOL_GM_EXACT, TOL_GM_EXACT)),
         ("curved", "exact", "pressure integration (exact wave surface), curved waterline", (TOL_GM_EXACT, TOL_GM_EXACT)),
+        ("volume_decay", "exact_decay", "pressure integration with decay on the exact wave surface, the kernel with "
+         "the pressure decay", (TOL_GM_EXACT, TOL_GM_EXACT)),
     ):
+        decay = model == "volume_decay"
         for j, (stat, tol) in enumerate(zip(("mean", "first-harmonic variation"), tols)):
             row = _row(lambda model=model, which=which, j=j: 100 * (gm_waves()[model][j] / gm_waves()[which][j] - 1),
                        f"GM in quartering waves lambda = L, H = T/3, ship held: {stat} vs {label}", "%",
                        "GM(t) = -dMx/dphi / (rho g V) at +-1 deg heel, 24 instants over a wave period, ship at its "
                        "calm-water equilibrium, 45 deg; surface-pressure integration on the hull mesh "
-                       f"(stabflow.dynamics.pressure, decay off, waterline={which!r}); the kernel with "
-                       f"waterline={'curved' if model == 'curved' else 'planar'!r}", "independent", tolerance=tol)
+                       + ("(stabflow.dynamics.pressure, e^{kz} decay, exact wave surface); the kernel with "
+                          "dphi_dzdt (SectionDecay: the decay, its cross-beam and heeled-section terms), planar "
+                          "waterline" if decay else
+                          f"(stabflow.dynamics.pressure, decay off, waterline={which!r}); the kernel with "
+                          f"waterline={'curved' if model == 'curved' else 'planar'!r}"), "independent", tolerance=tol)
             if row.status != "SKIPPED" and np.isfinite(row.value):
                 g = gm_waves()
                 row.reference += "; " + ", ".join(
