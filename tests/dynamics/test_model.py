@@ -426,13 +426,16 @@ def test_section_decay_kernel_against_the_slice_sums():
 def test_section_decay_wave_number_table_against_the_slice_sums(name):
     """``SectionDecay.tabulated`` (four-point Lagrange interpolation on a wave-number grid of spacing
     MOMENT_TABLE_STEP / L, the records' path) against ``moments`` (the slice sums) at 220 random wave
-    numbers to 1.5 /m and k = 0, upright and with one and two cross-beam heading sines: each of F, Z,
-    Y, X and D within 2e-5 of its largest value over k at the station (the docstring's measured
-    bound: 1.4e-7 for F, Z, Y, 7.4e-6 for X, 1.6e-6 for D), exact at the grid's nodes (1e-12), the
-    table grown on a later, wider call without changing the earlier nodes (a record's moments do not
-    depend on the records before it), the same arrays' layout as ``moments``, and negative wave
-    numbers refused; dry stations exact (F = 1, the rest 0)."""
-    from stabflow.dynamics.model import MOMENT_TABLE_STEP
+    numbers to 1.5 /m and k = 0, upright and with one and two cross-beam heading sines, two headings
+    of the same size in turn on one object (its tables are kept per heading): F, Z and Y within 1e-6,
+    X within 2e-5 and D within 5e-6 of their largest value over k at the station (measured, the
+    docstring's bounds: 1.9e-7, 1.3e-5, 1.6e-6; a node choice one interval off is about 2e-6 on F, Z,
+    Y), exact at the grid's nodes (1e-12), the table grown on a later, wider call without changing
+    the earlier nodes (a record's moments do not depend on the records before it), the same arrays'
+    layout as ``moments``, dry stations exact (F = 1, the rest 0), a call beyond MOMENT_TABLE_NODES
+    nodes and ``table_step`` 0 the exact sums themselves, a changed ``table_step`` a new table, and
+    negative or non-finite wave numbers refused."""
+    from stabflow.dynamics.model import MOMENT_TABLE_NODES, MOMENT_TABLE_STEP
 
     ship, sec, st, co = ship_model(name)
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
@@ -440,30 +443,48 @@ def test_section_decay_wave_number_table_against_the_slice_sums(name):
     assert MOMENT_TABLE_STEP == 0.1 and dec.table_step > 0
     rng = np.random.default_rng(3)
     k = np.concatenate([[0.0], np.sort(rng.uniform(0.0, 1.5, 220))])
-    for sb in (None, 0.6, (0.5, 1.0)):
+    one = section_decay(sec, h0, th0)  # every heading in turn on one object
+    dry = dec.total <= 0
+    assert np.any(dry) or name == "barge"
+    for sb in (None, 0.6, 0.7, (0.5, 1.0), (0.4, 1.0)):
         fresh = section_decay(sec, h0, th0)
         small = fresh.tabulated(k[k < 0.5], sb)  # a table to 0.5 /m first, then grown
-        got, ref = fresh.tabulated(k, sb), dec.moments(k, sb)
-        assert len(got) == len(ref)
-        for g, r, tol in zip(got, ref, (2e-5,) * 5):
-            assert g.shape == r.shape
-            scale = np.max(np.abs(r), axis=-1, keepdims=True)
-            assert np.max(np.abs(g - r) / np.where(scale > 0, scale, 1.0)) < tol
-            assert np.max(np.abs(g - r)) > 0 or np.max(scale) == 0  # interpolated, not the sums
-        for g0, g in zip(small, got):
+        ref = dec.moments(k, sb)
+        for got in (fresh.tabulated(k, sb), one.tabulated(k, sb)):
+            assert len(got) == len(ref)
+            for g, r, tol in zip(got, ref, (1e-6, 1e-6, 1e-6, 2e-5, 5e-6)):
+                assert g.shape == r.shape
+                scale = np.max(np.abs(r), axis=-1, keepdims=True)
+                assert np.max(np.abs(g - r) / np.where(scale > 0, scale, 1.0)) < tol
+                assert np.max(np.abs(g - r)) > 0 or np.max(scale) == 0  # interpolated, not the sums
+            # dry stations exactly F = 1, the rest 0, as the slice sums (the factorisation normalises
+            # each station's column: round-off there would take a rank of its own)
+            np.testing.assert_array_equal(got[0][dry], 1.0)
+            for g in got[1:]:
+                np.testing.assert_array_equal(g[..., dry, :], 0.0)
+        for g0, g in zip(small, fresh.tabulated(k, sb)):
             np.testing.assert_array_equal(g0, g[..., :g0.shape[-1]])
-        # dry stations exactly F = 1, the rest 0, as the slice sums (the factorisation normalises
-        # each station's column: round-off there would take a rank of its own)
-        dry = dec.total <= 0
-        assert np.any(dry) or name == "barge"
-        np.testing.assert_array_equal(got[0][dry], 1.0)
-        for g in got[1:]:
-            np.testing.assert_array_equal(g[..., dry, :], 0.0)
         nodes = dec.table_step * np.array([0.0, 1.0, 7.0, 30.0])
         for g, r in zip(fresh.tabulated(nodes, sb), dec.moments(nodes, sb)):
             np.testing.assert_allclose(g, r, rtol=0, atol=1e-12 * max(np.max(np.abs(r)), 1e-300))
-    with pytest.raises(ValueError, match="wave numbers"):
-        dec.tabulated([-0.1, 0.2])
+    far = np.array([0.3, (MOMENT_TABLE_NODES + 1) * dec.table_step])
+    for g, r in zip(dec.tabulated(far, 0.6), dec.moments(far, 0.6)):
+        np.testing.assert_array_equal(g, r)
+    exact = section_decay(sec, h0, th0)
+    exact.table_step = 0.0
+    for g, r in zip(exact.tabulated(k, 0.6), dec.moments(k, 0.6)):
+        np.testing.assert_array_equal(g, r)
+    # a changed spacing reads a table of its own, not the old nodes at the new spacing
+    coarse = section_decay(sec, h0, th0)
+    fine = coarse.tabulated(k, 0.6)
+    coarse.table_step *= 4.0
+    assert np.max(np.abs(coarse.tabulated(k, 0.6)[0] - fine[0])) > 0
+    for g, r, tol in zip(coarse.tabulated(k, 0.6), dec.moments(k, 0.6), (1e-3,) * 5):
+        scale = np.max(np.abs(r), axis=-1, keepdims=True)
+        assert np.max(np.abs(g - r) / np.where(scale > 0, scale, 1.0)) < tol
+    for bad in ([-0.1, 0.2], [np.nan], [np.inf]):
+        with pytest.raises(ValueError, match="finite and >= 0"):
+            dec.tabulated(bad)
 
 
 def _pressure(pm, sec, st, co, rho, heading_deg, duration=160.0, dt=0.1):

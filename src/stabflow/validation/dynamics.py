@@ -447,7 +447,7 @@ def volume_vs_pressure(sec: Sections, st: xr.Dataset, co: Coefficients, rho: flo
 
 def restoring_in_waves(sec: Sections, st: xr.Dataset, rho: float, mesh, lam: float, height: float,
                        heading_deg: float = QUARTERING, n_phases: int = GM_PHASES) -> dict:
-    """Metacentric height in waves of the ship held at its calm-water equilibrium, three ways.
+    """Metacentric height in waves of the ship held at its calm-water equilibrium, six ways.
 
     GM(t) = -dMx/dphi / (rho g V) by central differences at +-``GM_HEEL`` (V the calm-water
     volume, Mx about G) at ``n_phases`` instants over one wave period, regular waves of length
