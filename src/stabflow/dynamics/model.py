@@ -448,10 +448,7 @@ class SectionDecay:
         K._decay_moments(k, self.half_height, self.slice_depth, self.slice_area, self.slice_offset, self.slice_yy,
                          self.slice_yy_tilt, self.total, F, Z, Y, sbs, self.slice_breadth, self.waterline_breadth, X, D,
                          self.waterline_flare, self.origin_height)
-        if sin_beta is None:
-            return F, Z, Y
-        return (F, Z, Y, X[0], D[0]) if np.ndim(sin_beta) == 0 else (F, Z, Y, X, D)
-
+        return _heading_shaped(sin_beta, F, Z, Y, X, D)
 
     def tabulated(self, k, sin_beta=None) -> tuple[np.ndarray, ...]:
         """:meth:`moments` by four-point (cubic) Lagrange interpolation in k on a uniform grid of
@@ -492,12 +489,16 @@ class SectionDecay:
         dry = self.total <= 0
         out[:, dry] = 0.0
         out[0, dry] = 1.0
-        F, Z, Y = out[0], out[1], out[2]
-        if sin_beta is None:
-            return F, Z, Y
         XD = out[3:].reshape(nb, 7, nst, len(k))
-        X, D = XD[:, 0], XD[:, 1:]
-        return (F, Z, Y, X[0], D[0]) if np.ndim(sin_beta) == 0 else (F, Z, Y, X, D)
+        return _heading_shaped(sin_beta, out[0], out[1], out[2], XD[:, 0], XD[:, 1:])
+
+
+def _heading_shaped(sin_beta, F, Z, Y, X, D):
+    """:meth:`SectionDecay.moments`' return for its ``sin_beta``: (F, Z, Y) without one, X and D of
+    the one heading for a scalar, of each (leading axis) for a sequence."""
+    if sin_beta is None:
+        return F, Z, Y
+    return (F, Z, Y, X[0], D[0]) if np.ndim(sin_beta) == 0 else (F, Z, Y, X, D)
 
 
 def section_decay(sec: Sections, h0: float, th0: float) -> SectionDecay:
