@@ -113,6 +113,9 @@ FOIL_REVERSED = 2
 MAX_EVENTS = 4
 #: hysteresis of the modes' switches [rad, rad/s] (``_modes``)
 MODE_BAND = 1e-6
+#: a span whose modes are the same at both ends is searched for a switch and back at this many
+#: equal parts of its Hermite interpolant (``_simulate6``)
+EVENT_SAMPLES = 8
 
 # record status
 OK = 0
@@ -911,16 +914,33 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
             ok &= _rk4_span(a, j, n, dt, ta, 1.0, sub, sa, helm, modes, k1, k2, k3, k4, tmp, s, f, wave, work, mq, r,
                             False)
             _modes(m, foils, s, helm, modes, nat)
-            if _same(nat, modes):
-                break
-            if events == MAX_EVENTS:
-                for q in range(nf + 2):
-                    modes[q] = nat[q]
-                break
-            # locate the first switch on the Hermite interpolant of (sa, k1) and (s, kb)
-            ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
             lo = 0.0
             hi = 1.0
+            have_kb = False
+            if _same(nat, modes):
+                # the same modes at both ends: a branch left and re-entered within the span (an angle
+                # of attack grazing the stall angle) is looked for on the span's Hermite interpolant
+                # at EVENT_SAMPLES - 1 interior points
+                ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
+                have_kb = True
+                for q in range(1, EVENT_SAMPLES):
+                    c = q / EVENT_SAMPLES
+                    _hermite_state(c, h, sa, k1, s, kb, tmp)
+                    _modes(m, foils, tmp, helm, modes, nat)
+                    if not _same(nat, modes):
+                        hi = c
+                        break
+                    lo = c
+                if hi == 1.0:
+                    break
+            if events == MAX_EVENTS:
+                if not have_kb:
+                    for q in range(nf + 2):
+                        modes[q] = nat[q]
+                break
+            # locate the first switch on the Hermite interpolant of (sa, k1) and (s, kb)
+            if not have_kb:
+                ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
             for _ in range(40):
                 c = 0.5 * (lo + hi)
                 _hermite_state(c, h, sa, k1, s, kb, tmp)
