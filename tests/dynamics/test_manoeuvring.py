@@ -512,6 +512,61 @@ def test_event_location_keeps_rk4_order_through_stall_slew_and_stop(trawler):
     assert err[0.2] / err[0.1] > 8.0, err
 
 
+def _rudder_attack(model, s):
+    """The rudder's angle of attack [rad] in state ``s`` (as ``_kernels_6dof._modes`` reads it)."""
+    j = int(np.nonzero(model.foils[:, K6.F_RUDDER])[0][0])
+    _, _, u, v = K6._heading_velocities(model.m, s)
+    vf = v + s[K6.S_RATE + K6.S_YAW] * model.foils[j, K6.F_X] - s[K6.S_RATE + K6.S_ROLL] * model.foils[j, K6.F_Z]
+    return K6._attack(u, vf, s[K6.S_RUDDER])
+
+
+def test_event_location_finds_a_stall_inside_a_step_whose_ends_are_attached(trawler):
+    """A switch whose first mode's smooth continuation returns within the step (here the rudder's
+    angle of attack, continued on the attached branch, rising through the stall angle and back) is
+    not seen by comparing the modes at the step's ends; the step's interpolant is also searched at
+    EVENT_SAMPLES points. Constructed: in a moderate sea (PM Hs 1.5 m, 45 degree) the rudder's
+    largest angle of attack over 30 s (22.2 degree at 24.87 s) becomes a stall by setting the stall
+    angle just below it (the attached record above it for about 0.06 s), and one 0.2-s step starts
+    0.08 s before the peak, so that the attached record is below the stall angle at both its ends.
+    The stalled rudder loses its lift and stays stalled, and the step must end on the record at
+    dt = 0.00625 s. Measured: the step's end state is within 1.9e-6 (yaw rate 1.0e-6 rad/s) of it,
+    where the stall moves it by up to 1.3e-2 (the step without the interior search: the
+    attached record's end, 1e-2 off)."""
+    import dataclasses
+
+    from stabflow.waves.seaway import Seaway
+
+    model = six_dof(trawler, heading=45.0)
+    waves = Seaway(kind="pierson_moskowitz", hs=1.5).components(17, 0)
+    dt = 0.00625
+    states, _, status = run_six_dof(model, waves, 30.0, dt, dtype=np.float64)
+    assert status == K6.OK
+    j = int(np.nonzero(model.foils[:, K6.F_RUDDER])[0][0])
+    assert _switches(model, states)[j] == 0  # the rudder never stalls in this sea
+    alpha = np.abs([_rudder_attack(model, s) for s in states])
+    i = int(np.argmax(alpha[100:-100])) + 100
+    curv = (alpha[i + 1] - 2.0 * alpha[i] + alpha[i - 1]) / dt ** 2  # [rad/s^2], negative at the peak
+    # the stall angle that the attached record exceeds for 0.06 s
+    foils = model.foils.copy()
+    foils[j, K6.F_STALL] = alpha[i] + curv * 0.03 ** 2 / 2.0
+    grazed = dataclasses.replace(model, foils=foils)
+    k0 = i - int(round(0.08 / dt))
+    step = 0.2
+    attached, _, _ = run_six_dof(model, waves, step, dt, s0=states[k0], t0=k0 * dt, dtype=np.float64)
+    # at both ends of the step the attached record is below the new stall angle, above it inside
+    ends = [abs(_rudder_attack(model, s)) for s in (attached[0], attached[-1])]
+    assert max(ends) < foils[j, K6.F_STALL] < alpha[i], (ends, foils[j, K6.F_STALL], alpha[i])
+    fine, _, status = run_six_dof(grazed, waves, step, dt, s0=states[k0], t0=k0 * dt, dtype=np.float64)
+    assert status == K6.OK and _switches(grazed, fine)[j] == 1  # stalls once and stays stalled
+    one, _, status = run_six_dof(grazed, waves, step, step, s0=states[k0], t0=k0 * dt, dtype=np.float64)
+    assert status == K6.OK and len(one) == 2
+    idx = model.continuous_index()
+    moved = np.max(np.abs(fine[-1, idx] - attached[-1, idx]))
+    assert moved > 5e-3, moved  # the stall matters
+    err = np.max(np.abs(one[-1, idx] - fine[-1, idx]))
+    assert err < 1e-3 * moved, (err, moved)
+
+
 def test_modes_switch_with_hysteresis():
     """The discrete modes of a state (``_modes``): the foil's lift branch from its angle of attack,
     the gear's slew limit and stop; a held mode stays until its margin passes -MODE_BAND; the held

@@ -1016,7 +1016,8 @@ def _lagrange_nodes(k, h, tab, out):
     """Fill ``out`` (nq, nst, nc) with the four-point Lagrange (cubic) interpolant at the wave
     numbers ``k`` (nc,) >= 0 [1/m] of ``tab`` (nn, nq, nst), tabulated at k = j ``h``, j = 0 ... nn - 1
     (nn >= 4): nodes j0 ... j0 + 3 with j0 = floor(k / h) - 1 (0 in the first interval, nn - 4 past
-    the last but one), exact at the nodes and for cubics (``model.SectionDecay.tabulated``)."""
+    the last but one), exact at the nodes and for cubics, constants exactly
+    (``model.SectionDecay.tabulated``)."""
     nn, nq, nst = tab.shape
     for n in range(k.shape[0]):
         u = k[n] / h
@@ -1028,5 +1029,8 @@ def _lagrange_nodes(k, h, tab, out):
         w3 = t * (t - 1.0) * (t - 2.0) / 6.0
         for q in range(nq):
             for i in range(nst):
-                out[q, i, n] = (w0 * tab[j0, q, i] + w1 * tab[j0 + 1, q, i] + w2 * tab[j0 + 2, q, i]
-                                + w3 * tab[j0 + 3, q, i])
+                # in differences from the second node: a constant (a dry station's F = 1, its other
+                # moments 0) comes out exactly, not to the weights' round-off
+                b = tab[j0 + 1, q, i]
+                out[q, i, n] = b + (w0 * (tab[j0, q, i] - b) + w2 * (tab[j0 + 2, q, i] - b)
+                                    + w3 * (tab[j0 + 3, q, i] - b))

@@ -483,12 +483,10 @@ class SectionDecay:
             tab = np.ascontiguousarray(np.concatenate([tab, new.transpose(2, 0, 1)]))
             self._tables[key] = tab
         out = np.empty((tab.shape[1], nst, len(k)))
+        # a dry station's F = 1, Z = Y = X = D = 0 come out exactly, as from :meth:`moments` (the
+        # interpolation is in differences: with plain weights, whose sum is 1 only to round-off,
+        # 1 - F of 1e-17 there took a rank of the decay factorisation)
         K._lagrange_nodes(k, h, tab, out)
-        # a dry station's F = 1, Z = Y = X = D = 0 exactly, as :meth:`moments` (the weights' sum
-        # is 1 only to round-off: 1 - F of 1e-17 there took a rank of the decay factorisation)
-        dry = self.total <= 0
-        out[:, dry] = 0.0
-        out[0, dry] = 1.0
         XD = out[3:].reshape(nb, 7, nst, len(k))
         return _heading_shaped(sin_beta, out[0], out[1], out[2], XD[:, 0], XD[:, 1:])
 
