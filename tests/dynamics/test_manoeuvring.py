@@ -523,8 +523,8 @@ def _rudder_attack(model, s):
 def test_event_location_finds_a_stall_inside_a_step_whose_ends_are_attached(trawler):
     """A switch whose first mode's smooth continuation returns within the step (here the rudder's
     angle of attack, continued on the attached branch, rising through the stall angle and back) is
-    not seen by comparing the modes at the step's ends; the step's interpolant is also searched at
-    EVENT_SAMPLES points. Constructed: in a moderate sea (PM Hs 1.5 m, 45 degree) the rudder's
+    not seen by comparing the modes at the step's ends; the step's interior is also searched (RK4's
+    continuous extension at EVENT_SAMPLES - 1 points, then the Hermite interpolant). Constructed: in a moderate sea (PM Hs 1.5 m, 45 degree) the rudder's
     largest angle of attack over 30 s (22.2 degree at 24.87 s) becomes a stall by setting the stall
     angle just below it (the attached record above it for about 0.06 s), and one 0.2-s step starts
     0.08 s before the peak, so that the attached record is below the stall angle at both its ends.

@@ -113,8 +113,8 @@ FOIL_REVERSED = 2
 MAX_EVENTS = 4
 #: hysteresis of the modes' switches [rad, rad/s] (``_modes``)
 MODE_BAND = 1e-6
-#: a span whose modes are the same at both ends is searched for a switch and back at this many
-#: equal parts of its Hermite interpolant (``_simulate6``)
+#: a span whose modes are the same at both ends is searched for a switch and back at the points
+#: dividing it into this many equal parts (``_simulate6``, ``_switched_inside``)
 EVENT_SAMPLES = 8
 
 # record status
@@ -854,6 +854,28 @@ def _hermite_state(c, h, sa, ka, sb, kb, out):
         out[q] = h00 * sa[q] + h10 * ka[q] + h01 * sb[q] + h11 * kb[q]
 
 
+@njit(cache=True, inline="always")
+def _switched_inside(m, foils, helm, modes, nat, h, sa, k1, k2, k3, k4, tmp):
+    """True if the modes differ from ``modes`` at any of the EVENT_SAMPLES - 1 interior points of
+    the RK4 span of length ``h`` [s] from ``sa`` with stages ``k1`` ... ``k4``, on the method's
+    continuous extension of order 3 (Hairer, Norsett & Wanner, Solving ODEs I, II.6: weights
+    b1 = c - 3 c^2 / 2 + 2 c^3 / 3, b2 = b3 = c^2 - 2 c^3 / 3, b4 = -c^2 / 2 + 2 c^3 / 3, the step's
+    own at c = 1). ``nat`` and ``tmp`` are work arrays."""
+    for q in range(1, EVENT_SAMPLES):
+        c = q / EVENT_SAMPLES
+        c2 = c * c
+        c3 = c2 * c
+        b1 = h * (c - 1.5 * c2 + 2.0 * c3 / 3.0)
+        b2 = h * (c2 - 2.0 * c3 / 3.0)
+        b4 = h * (2.0 * c3 / 3.0 - 0.5 * c2)
+        for i in range(sa.shape[0]):
+            tmp[i] = sa[i] + b1 * k1[i] + b2 * (k2[i] + k3[i]) + b4 * k4[i]
+        _modes(m, foils, tmp, helm, modes, nat)
+        if not _same(nat, modes):
+            return True
+    return False
+
+
 @njit(cache=True, nogil=True)
 def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay, dt, nsteps, s0, phi_cap, out):
     """Fixed-step RK4 of the 6-DOF state from ``s0`` (N_STATE6 + the memory states,); ``ltab`` (2 nsteps + 1, npoints,
@@ -869,8 +891,12 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
     switch; if the modes at the step's end differ, the switch is located by bisection on the step's
     cubic Hermite interpolant (from the states and rates at both ends, fourth order like RK4), the
     step is integrated to it, the modes change (a rudder reaching its stop is set there) and the
-    rest of the step follows, at most ``MAX_EVENTS`` times a step. Between the line table's
-    half-step rows, the wave is their quadratic interpolation in time."""
+    rest of the step follows, at most ``MAX_EVENTS`` times a step. Where the modes at both ends
+    agree, a branch left and re-entered inside the step (the rudder's angle of attack carried past
+    its stall angle and back) is looked for at ``EVENT_SAMPLES`` - 1 interior points of RK4's
+    continuous extension (``_switched_inside``; free: its stages), and a switch found there is
+    located as above. Between the line table's half-step rows, the wave is their quadratic
+    interpolation in time."""
     ns = s0.shape[0]
     s = np.empty(ns)
     sa = np.empty(ns)
@@ -919,18 +945,20 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
             have_kb = False
             if _same(nat, modes):
                 # the same modes at both ends: a branch left and re-entered within the span (an angle
-                # of attack grazing the stall angle) is looked for on the span's Hermite interpolant
-                # at EVENT_SAMPLES - 1 interior points
-                ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
-                have_kb = True
-                for q in range(1, EVENT_SAMPLES):
-                    c = q / EVENT_SAMPLES
-                    _hermite_state(c, h, sa, k1, s, kb, tmp)
-                    _modes(m, foils, tmp, helm, modes, nat)
-                    if not _same(nat, modes):
-                        hi = c
-                        break
-                    lo = c
+                # of attack grazing the stall angle) is looked for at EVENT_SAMPLES - 1 interior
+                # points, first on RK4's own continuous extension (its stages, no right-hand side
+                # more), and only where that finds one on the Hermite interpolant that locates it
+                if _switched_inside(m, foils, helm, modes, nat, h, sa, k1, k2, k3, k4, tmp):
+                    ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
+                    have_kb = True
+                    for q in range(1, EVENT_SAMPLES):
+                        c = q / EVENT_SAMPLES
+                        _hermite_state(c, h, sa, k1, s, kb, tmp)
+                        _modes(m, foils, tmp, helm, modes, nat)
+                        if not _same(nat, modes):
+                            hi = c
+                            break
+                        lo = c
                 if hi == 1.0:
                     break
             if events == MAX_EVENTS:
