@@ -521,17 +521,17 @@ def _rudder_attack(model, s):
 
 
 def test_event_location_finds_a_stall_inside_a_step_whose_ends_are_attached(trawler):
-    """A switch whose first mode's smooth continuation returns within the step (here the rudder's
-    angle of attack, continued on the attached branch, rising through the stall angle and back) is
-    not seen by comparing the modes at the step's ends; the step's interior is also searched (RK4's
-    continuous extension at EVENT_SAMPLES - 1 points, then the Hermite interpolant). Constructed: in a moderate sea (PM Hs 1.5 m, 45 degree) the rudder's
-    largest angle of attack over 30 s (22.2 degree at 24.87 s) becomes a stall by setting the stall
-    angle just below it (the attached record above it for about 0.06 s), and one 0.2-s step starts
-    0.08 s before the peak, so that the attached record is below the stall angle at both its ends.
-    The stalled rudder loses its lift and stays stalled, and the step must end on the record at
-    dt = 0.00625 s. Measured: the step's end state is within 1.9e-6 (yaw rate 1.0e-6 rad/s) of it,
-    where the stall moves it by up to 1.3e-2 (the step without the interior search: the
-    attached record's end, 1e-2 off)."""
+    """A switch whose first mode's smooth continuation returns within the step (here the rudder's angle
+    of attack, continued on the attached branch, rising through the stall angle and back) is not seen by
+    comparing the modes at the step's ends; the step's interior is also searched (RK4's continuous
+    extension at EVENT_SAMPLES - 1 points, then the Hermite interpolant). Constructed: in a moderate sea
+    (PM Hs 1.5 m, 45 degree) the rudder's largest angle of attack over 30 s (22.2 degree at 24.87 s)
+    becomes a stall by setting the stall angle just below it (the attached record above it for about
+    0.06 s), and one 0.2-s step starts 0.08 s before the peak, so that the attached record is below the
+    stall angle at both its ends. The stalled rudder loses its lift and stays stalled, and the step must
+    end on the record at dt = 0.00625 s. Measured: the step's end state is within 1.9e-6 (yaw rate
+    1.0e-6 rad/s) of it, where the stall moves it by up to 1.25e-2 (the step without the interior
+    search: the attached record's end, all of that off)."""
     import dataclasses
 
     from stabflow.waves.seaway import Seaway

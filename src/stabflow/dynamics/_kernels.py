@@ -1016,15 +1016,14 @@ def _lagrange_nodes(k, h, tab, out):
     """Fill ``out`` (nq, nst, nc) with the four-point Lagrange (cubic) interpolant at the wave
     numbers ``k`` (nc,) >= 0 [1/m] of ``tab`` (nn, nq, nst), tabulated at k = j ``h``, j = 0 ... nn - 1
     (nn >= 4): nodes j0 ... j0 + 3 with j0 = floor(k / h) - 1 (0 in the first interval, nn - 4 past
-    the last but one), exact at the nodes and for cubics, constants exactly
-    (``model.SectionDecay.tabulated``)."""
+    the last but one), exact for cubics (to round-off) and constants exactly: written in differences
+    from the second node, whose weight is 1 - w0 - w2 - w3 (``model.SectionDecay.tabulated``)."""
     nn, nq, nst = tab.shape
     for n in range(k.shape[0]):
         u = k[n] / h
         j0 = min(max(int(math.floor(u)) - 1, 0), nn - 4)
         t = u - j0
         w0 = -(t - 1.0) * (t - 2.0) * (t - 3.0) / 6.0
-        w1 = t * (t - 2.0) * (t - 3.0) / 2.0
         w2 = -t * (t - 1.0) * (t - 3.0) / 2.0
         w3 = t * (t - 1.0) * (t - 2.0) / 6.0
         for q in range(nq):

@@ -888,15 +888,16 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
     Event location: the foils' lift branches (stall, paper 004 eq 9) and the steering gear's slew
     limit and stop (eqs 33, 34) switch the right-hand side, which RK4 resolves only to the step.
     So the modes (``_modes``) are held within a step, each branch's formula continued beyond its
-    switch; if the modes at the step's end differ, the switch is located by bisection on the step's
-    cubic Hermite interpolant (from the states and rates at both ends, fourth order like RK4), the
+    switch; if the modes at the step's end differ, the switch is located on the step's cubic Hermite
+    interpolant (from the states and rates at both ends, fourth order like RK4), bracketed by its
+    first change among ``EVENT_SAMPLES`` - 1 interior points and bisected there, the
     step is integrated to it, the modes change (a rudder reaching its stop is set there) and the
     rest of the step follows, at most ``MAX_EVENTS`` times a step. Where the modes at both ends
     agree, a branch left and re-entered inside the step (the rudder's angle of attack carried past
-    its stall angle and back) is looked for at ``EVENT_SAMPLES`` - 1 interior points of RK4's
-    continuous extension (``_switched_inside``; free: its stages), and a switch found there is
-    located as above. Between the line table's half-step rows, the wave is their quadratic
-    interpolation in time."""
+    its stall angle and back) is looked for at those points on RK4's continuous extension
+    (``_switched_inside``; from its stages, no right-hand side more), and a switch found there is
+    located as above (unless the Hermite interpolant shows none: a borderline graze). Between the
+    line table's half-step rows, the wave is their quadratic interpolation in time."""
     ns = s0.shape[0]
     s = np.empty(ns)
     sa = np.empty(ns)
@@ -940,35 +941,32 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
             ok &= _rk4_span(a, j, n, dt, ta, 1.0, sub, sa, helm, modes, k1, k2, k3, k4, tmp, s, f, wave, work, mq, r,
                             False)
             _modes(m, foils, s, helm, modes, nat)
+            same = _same(nat, modes)
+            # the same modes at both ends: a branch left and re-entered within the span (an angle of
+            # attack grazing the stall angle) is looked for at EVENT_SAMPLES - 1 interior points of
+            # RK4's own continuous extension (its stages: no right-hand side more)
+            if same and (events == MAX_EVENTS or not _switched_inside(m, foils, helm, modes, nat, h, sa, k1, k2, k3,
+                                                                        k4, tmp)):
+                break
+            if events == MAX_EVENTS:
+                for q in range(nf + 2):
+                    modes[q] = nat[q]
+                break
+            # the first switch on the Hermite interpolant of (sa, k1) and (s, kb): bracketed by the
+            # same interior points (so that of several crossings the first is taken), then bisected
+            ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
             lo = 0.0
             hi = 1.0
-            have_kb = False
-            if _same(nat, modes):
-                # the same modes at both ends: a branch left and re-entered within the span (an angle
-                # of attack grazing the stall angle) is looked for at EVENT_SAMPLES - 1 interior
-                # points, first on RK4's own continuous extension (its stages, no right-hand side
-                # more), and only where that finds one on the Hermite interpolant that locates it
-                if _switched_inside(m, foils, helm, modes, nat, h, sa, k1, k2, k3, k4, tmp):
-                    ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
-                    have_kb = True
-                    for q in range(1, EVENT_SAMPLES):
-                        c = q / EVENT_SAMPLES
-                        _hermite_state(c, h, sa, k1, s, kb, tmp)
-                        _modes(m, foils, tmp, helm, modes, nat)
-                        if not _same(nat, modes):
-                            hi = c
-                            break
-                        lo = c
-                if hi == 1.0:
+            for q in range(1, EVENT_SAMPLES):
+                c = q / EVENT_SAMPLES
+                _hermite_state(c, h, sa, k1, s, kb, tmp)
+                _modes(m, foils, tmp, helm, modes, nat)
+                if not _same(nat, modes):
+                    hi = c
                     break
-            if events == MAX_EVENTS:
-                if not have_kb:
-                    for q in range(nf + 2):
-                        modes[q] = nat[q]
-                break
-            # locate the first switch on the Hermite interpolant of (sa, k1) and (s, kb)
-            if not have_kb:
-                ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
+                lo = c
+            if same and hi == 1.0:
+                break  # the Hermite interpolant shows none (the extension's switch was borderline)
             for _ in range(40):
                 c = 0.5 * (lo + hi)
                 _hermite_state(c, h, sa, k1, s, kb, tmp)
