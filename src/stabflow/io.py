@@ -179,6 +179,14 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "surf_riding": ("1", "record surf-rode (6-DOF: speed along the waves near the peak wave's celerity)"),
     "broach_count": ("1", "records that broached"),
     "surf_riding_count": ("1", "records that surf-rode"),
+    "map_heading": ("degree", "probability map: wave heading relative to the course (0 following)"),
+    "map_speed": ("knot", "probability map: commanded speed"),
+    **{f"map_{e}_{q}": ("1", f"probability map: {w.format(e)}") for e in ("capsize", "broach")
+       for q, w in (("count", "records with a {}"), ("probability", "probability of a {} per record"),
+                    ("lower", "lower bound of the Clopper-Pearson interval of the {} probability"),
+                    ("upper", "upper bound of the Clopper-Pearson interval of the {} probability"))},
+    "map_step_error": ("%", "probability map: roll and yaw over the first 30 s of the cell's first record at dt "
+                            "vs dt / 5, largest difference / largest value (at least 1 degree)"),
     "capsize_rate": ("1/h", "capsizes per simulated hour (brute force)"),
     "hist_roll": ("1", "roll histogram counts"),
     "hist_heave": ("1", "heave histogram counts"),

@@ -511,7 +511,7 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     manoeuvres, and the surf-riding threshold checks → NetCDF, validation rows, figures."""
     from pathlib import Path
 
-    from stabflow.dynamics.broaching import manoeuvre_checks, probability_map, scenario
+    from stabflow.dynamics.broaching import manoeuvre_checks, map_step_row, probability_map, scenario
     from stabflow.io import write_netcdf
     from stabflow.plots.broaching import manoeuvres_figure, map_figure, motions_figure, strip_figure
     from stabflow.validation import checks_dataset
@@ -529,6 +529,7 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     ds.attrs.update(man.attrs)
     if "map" in cfg:
         pm = probability_map(ship, cfg, progress=progress, radiation=rad)
+        rows.append(map_step_row(pm))
         ds = ds.merge(pm)
         ds.attrs.update(pm.attrs)
     if figures:

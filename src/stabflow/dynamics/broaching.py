@@ -525,9 +525,13 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
     (``cfg``: the broaching section's ``map``), with Clopper-Pearson intervals on every cell.
 
     Each cell simulates ``records`` independent records of ``duration`` seconds (seaway record
-    index unique over the map, from the map's seed) with the autopilot on the original course."""
+    index unique over the map, from the map's seed) with the autopilot on the original course; the
+    first ``TRAJECTORY_S`` seconds of each cell's first record are simulated again at dt / ``REFINE``
+    for the step's check (``map_step_error`` [%], :func:`map_step_row`)."""
     from scipy.stats import binomtest
     from tqdm import tqdm
+
+    from stabflow.validation.ensemble import REFINE, TRAJECTORY_S, relative_trajectory_error
 
     mc = cfg["map"]
     lspec = cfg["loadings"][mc["loading"]]
@@ -541,13 +545,22 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
     dt, dur = float(mc["dt"]), float(mc["duration"])
     cap = np.zeros((len(heads), len(speeds)), int)
     bro = np.zeros_like(cap)
+    step = np.zeros(cap.shape)
+    check_s = min(TRAJECTORY_S, dur)
     bar = tqdm(total=cap.size * n, desc=f"{ship.name} heading x speed map", disable=not progress)
     for i, h in enumerate(heads):
         for j, v in enumerate(speeds):
             model = with_condition(base, h, v * KNOT)
             for r in range(n):
                 rec = (i * len(speeds) + j) * n + r
-                ds = simulate_six_dof(model, sea.components(int(mc["seed"]), rec), dur, dt)
+                waves = sea.components(int(mc["seed"]), rec)
+                ds = simulate_six_dof(model, waves, dur, dt)
+                if r == 0:
+                    # the step: the first seconds of the cell's first record again at dt / REFINE
+                    fine = simulate_six_dof(model, waves, check_s, dt / REFINE)
+                    step[i, j] = relative_trajectory_error(*(np.radians(np.column_stack(
+                        [d["roll"].values, d["yaw"].values])) for d in (ds.sel(time=slice(None, check_s)), fine)),
+                        REFINE)
                 e = record_events(ds, broach_deg=float(cfg["broach_deg"]), celerity=G / sea.modal_frequency,
                                   surf_tolerance=float(cfg["surf_tolerance"]), surf_min_s=float(cfg["surf_min_s"]),
                                   heading_deg=h)
@@ -572,7 +585,31 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
         out[f"map_{name}_probability"] = (dims, k / n)
         out[f"map_{name}_lower"] = (dims, lo)
         out[f"map_{name}_upper"] = (dims, hi)
-    out.attrs.update(map_records=n, map_duration=dur, map_loading=mc["loading"], map_kg=float(base.p[K.P_ZG]),
+    out["map_step_error"] = (dims, step)
+    out.attrs.update(map_records=n, map_duration=dur, map_dt=dt, map_step_seconds=check_s, map_loading=mc["loading"],
+                     map_kg=float(base.p[K.P_ZG]),
                      map_sea=f"{mc['sea']['spectrum']} Hs {float(mc['sea']['hs']):g} m", map_alpha=alpha,
                      map_interval="Clopper-Pearson (exact binomial)")
-    return out
+    return annotate(out)
+
+
+def map_step_row(pm: xr.Dataset):
+    """The probability map's step-size row (consistency) from :func:`probability_map`'s dataset: the
+    largest ``map_step_error`` over the cells against the ensembles' trajectory tolerance
+    (``validation.ensemble.TOL_TRAJECTORY``)."""
+    from stabflow.validation import run_check
+    from stabflow.validation.ensemble import REFINE, TOL_TRAJECTORY
+
+    dt = float(pm.attrs["map_dt"])
+    name = (f"probability map, step size: roll and yaw over the first {pm.attrs['map_step_seconds']:g} s of each "
+            f"cell's first record at dt = {dt:g} s vs dt = {dt / REFINE:g} s ({pm['map_step_error'].size} cells): "
+            "largest difference / largest value (at least 1 deg)")
+    ref = f"the same records at dt / {REFINE} = {dt / REFINE:g} s"
+
+    def value():
+        e = pm["map_step_error"].values
+        if not np.all(np.isfinite(e)):
+            raise ValueError(f"{int(np.sum(~np.isfinite(e)))} cells without a step error")
+        return float(np.max(e))
+
+    return run_check(value, name, "%", ref, "consistency", tolerance=TOL_TRAJECTORY)

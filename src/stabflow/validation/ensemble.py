@@ -365,12 +365,19 @@ def trajectory_error(model, records, dt: float, fine: float, seconds: float = TR
     for r in records:
         sa, na = simulate_record(coarse, int(r))
         sb, nb = simulate_record(refined, int(r))
-        n = min(na, nb // k)
-        for j in dofs:
-            ref = sb[:n * k + 1:k, j]
-            scale = max(float(np.max(np.abs(ref))), TRAJECTORY_FLOOR)
-            worst = max(worst, float(np.max(np.abs(sa[:n + 1, j] - ref))) / scale)
-    return 100.0 * worst
+        worst = max(worst, relative_trajectory_error(sa[:na + 1, dofs], sb[:nb + 1, dofs], k))
+    return worst
+
+
+def relative_trajectory_error(coarse: np.ndarray, fine: np.ndarray, k: int) -> float:
+    """Largest difference [%] between the columns (angles [rad]) of ``coarse`` (steps of dt, rows 0 ...)
+    and ``fine`` (steps of dt / ``k``) at the coarse steps both reach, each column relative to its
+    largest absolute value at ``fine`` there, or to ``TRAJECTORY_FLOOR`` (1 degree) where that is
+    smaller (:func:`trajectory_error`; the broaching map's step row)."""
+    n = min(len(coarse), (len(fine) - 1) // k + 1)
+    ref = fine[:(n - 1) * k + 1:k]
+    scale = np.maximum(np.max(np.abs(ref), axis=0), TRAJECTORY_FLOOR)
+    return 100.0 * float(np.max(np.max(np.abs(coarse[:n] - ref), axis=0) / scale))
 
 
 def step_checks(model, ens: xr.Dataset, records: int = CONVERGENCE_RECORDS, threads: int = 1) -> list[Check]:
