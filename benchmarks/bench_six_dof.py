@@ -6,7 +6,8 @@ The 6-DOF model carries the pressure's decay with depth as the pipeline's record
 1. Step-size convergence: one record (Pierson-Moskowitz Hs 3.1 m, paper 004 IR-1 with the trawler,
    or ``--hs``, seed ``--seed``;
    the ensemble sea with DTMB 5415), 10 kn, waves 45 degree off the stern, autopilot on, at
-   dt = 0.0125 ... 0.5 s against dt = 0.00625 s: the largest roll and yaw differences over the
+   dt = 0.0125 ... 1.0 s (``STEPS``; a step the radiation memory refuses ends the list) against
+   dt = 0.00625 s: the largest roll and yaw differences over the
    first ``--horizon`` seconds relative to their largest values (the trajectory; a stern-quartering
    record in a steep sea is chaotic, so after a minute or so two records of any two steps part
    however small the steps), and the roll and yaw standard deviations and largest |roll| of the
@@ -33,6 +34,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
+from stabflow import StabflowError  # noqa: E402
 from stabflow.config import load_ship  # noqa: E402
 from stabflow.dynamics import _kernels as K  # noqa: E402
 from stabflow.dynamics import manoeuvring  # noqa: E402
@@ -41,6 +43,10 @@ from stabflow.dynamics.manoeuvring import simulate_six_dof  # noqa: E402
 from stabflow.dynamics.tables import kernel_args  # noqa: E402
 from stabflow.waves.seaway import Seaway  # noqa: E402
 from stabflow.waves.synthesis import station_wave_table  # noqa: E402
+
+
+#: the steps whose trajectories are compared with dt 0.00625 s [s] (each a multiple of it)
+STEPS = (0.0125, 0.025, 0.05, 0.1, 0.2, 0.25, 0.4, 0.5, 0.625, 0.8, 1.0)
 
 
 def three_dof_cpu(model, waves, dt, seconds):
@@ -121,8 +127,12 @@ def main(argv=None):
     print(f"  dt 0.00625 s (reference): roll sigma {float(ref['roll'].std()):7.3f} deg, yaw sigma "
           f"{float(ref['yaw'].std()):7.3f} deg, max |roll| {float(np.abs(ref['roll']).max()):7.2f} deg")
     errs = {}
-    for dt in (0.0125, 0.025, 0.05, 0.1, 0.2, 0.25, 0.4, 0.5):
-        ds = simulate_six_dof(model, waves, a.seconds, dt)
+    for dt in STEPS:
+        try:
+            ds = simulate_six_dof(model, waves, a.seconds, dt)
+        except StabflowError as exc:  # e.g. a step too long for the radiation memory's fastest pole
+            print(f"  dt {dt:6.4f} s: not run ({exc}); no longer step tried")
+            break
         t = ds.time.where(ds.time <= ap_h, drop=True)
         e = max(float(np.abs(ds[v].sel(time=t) - ref[v].sel(time=t)).max()) / scale[v] for v in ("roll", "yaw"))
         errs[dt] = e
@@ -138,7 +148,7 @@ def main(argv=None):
     else:
         conv = min(errs)
         print(f"  NOT CONVERGED: no step within 1 % over the first {ap_h:g} s; timing at {conv:g} s")
-    for dt in sorted({conv, 0.5}):
+    for dt in sorted({conv, 0.5}):  # the converged step, and 0.5 s as the earlier sessions' figure
         # the best of three runs of each (the machine's other load only ever adds time)
         runs = []
         for _ in range(3):
