@@ -185,8 +185,10 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
        for q, w in (("count", "records with a {}"), ("probability", "probability of a {} per record"),
                     ("lower", "lower bound of the Clopper-Pearson interval of the {} probability"),
                     ("upper", "upper bound of the Clopper-Pearson interval of the {} probability"))},
-    "map_step_error": ("%", "probability map: roll and yaw over the first 30 s of the cell's first record at dt "
-                            "vs dt / 5, largest difference / largest value (at least 1 degree)"),
+    "step_error": ("%", "paper 004's case: roll and yaw over the record's first step_seconds at dt vs dt / 5, "
+                        "largest difference / largest value (at least 1 degree)"),
+    "map_step_error": ("%", "probability map: roll and yaw over the cell's first record's first map_step_seconds "
+                            "at dt vs dt / 5, largest difference / largest value (at least 1 degree)"),
     "capsize_rate": ("1/h", "capsizes per simulated hour (brute force)"),
     "hist_roll": ("1", "roll histogram counts"),
     "hist_heave": ("1", "heave histogram counts"),

@@ -511,7 +511,8 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     manoeuvres, and the surf-riding threshold checks → NetCDF, validation rows, figures."""
     from pathlib import Path
 
-    from stabflow.dynamics.broaching import manoeuvre_checks, map_step_row, probability_map, scenario
+    from stabflow.dynamics.broaching import (manoeuvre_checks, map_step_row, probability_map, scenario,
+                                             scenario_step_row)
     from stabflow.io import write_netcdf
     from stabflow.plots.broaching import manoeuvres_figure, map_figure, motions_figure, strip_figure
     from stabflow.validation import checks_dataset
@@ -525,6 +526,7 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
         rad = ship_radiation(ship, progress=progress)
     ds = scenario(ship, cfg, progress=progress, radiation=rad)
     man, rows, tracks, zigzags = manoeuvre_checks(ship, cfg, radiation=rad)
+    rows.append(scenario_step_row(ds))
     ds = ds.merge(man)
     ds.attrs.update(man.attrs)
     if "map" in cfg:

@@ -6,7 +6,8 @@ import pytest
 from stabflow.config import load_pipeline, load_ship
 from stabflow.constants import G
 from stabflow.dynamics import _kernels as K
-from stabflow.dynamics.broaching import heavy_kg, map_step_row, scenario, six_dof_model, trough_phase
+from stabflow.dynamics.broaching import (heavy_kg, map_step_row, scenario, scenario_step_row, six_dof_model,
+                                         trough_phase)
 from stabflow.geometry import build_hull
 from stabflow.hydrostatics.statics import compute_statics
 
@@ -45,6 +46,11 @@ def test_scenario_dataset_of_the_test_profile():
         n = int(round(float(r["end_time"]) / ds.attrs["dt"])) + 1
         assert np.isfinite(r["roll"].values[:n]).all()
         assert np.isnan(r["roll"].values[n:]).all()
+    # the step's check: each record's first 15 s again at dt / 5, its row the largest error
+    e = ds["step_error"].values
+    assert e.shape == (ds.sizes["loading"], ds.sizes["case"]) and np.all(np.isfinite(e)) and np.all(e > 0)
+    row = scenario_step_row(ds)
+    assert row.value == float(np.max(e)) and row.status == "PASS" and "15 s" in row.check
 
 
 def test_probability_map_counts_and_intervals():
@@ -88,7 +94,7 @@ def test_probability_map_step_row_grows_with_the_step_and_fails_when_too_long():
     pm = pm[0.2]
     pm["map_step_error"][:] = np.nan
     row = map_step_row(pm)
-    assert row.status == "FAIL" and "without a step error" in row.reason
+    assert row.status == "FAIL" and "records without a step error" in row.reason
 
 
 def test_manoeuvring_added_mass_does_not_depend_on_blas_threads():

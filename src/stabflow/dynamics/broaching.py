@@ -125,10 +125,13 @@ def trough_phase(model: SixDof, omega: float) -> float:
 
 def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Dataset | None = None) -> xr.Dataset:
     """Run paper 004's cases (``cfg``: the config's ``broaching`` section) at each loading; returns
-    time histories along (loading, case, time), NaN after a record's end (``end_time``), and the
-    events of each record. ``radiation``: the ship's heave-pitch memory dataset, if it uses one
-    (:func:`six_dof_model`)."""
+    time histories along (loading, case, time), NaN after a record's end (``end_time``), the
+    events of each record and its step's check (``step_error`` [%]: the first ``TRAJECTORY_S``
+    seconds again at dt / ``REFINE``, :func:`scenario_step_row`). ``radiation``: the ship's
+    heave-pitch memory dataset, if it uses one (:func:`six_dof_model`)."""
     from tqdm import tqdm
+
+    from stabflow.validation.ensemble import TRAJECTORY_S
 
     dt = float(cfg["dt"])
     loads = {}
@@ -143,6 +146,8 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Datase
     ev_names = ("capsized", "capsize_time", "broach", "broach_time", "surf_riding", "surf_riding_time",
                 "surf_riding_longest", "end_time")
     ev = {k: np.zeros((len(loads), len(cases))) for k in ev_names}
+    step = np.zeros((len(loads), len(cases)))
+    check_s = min(TRAJECTORY_S, float(reg["duration"]), float(irr["duration"]))
     kgs = np.zeros(len(loads))
     wave = np.full((len(cases), 3), np.nan)  # wave number, encounter frequency, phase (regular cases)
     bar = tqdm(total=len(loads) * len(cases), desc=f"{ship.name} paper 004 cases", disable=not progress)
@@ -162,6 +167,7 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Datase
                 waves = sea.components(int(irr["seed"]), j)
                 dur, cel = float(irr["duration"]), G / sea.modal_frequency
             ds = simulate_six_dof(model, waves, dur, dt)
+            step[i, j] = _step_error(model, waves, ds, dt, check_s)
             m = ds.sizes["time"]
             for v in MOTIONS:
                 data[v][i, j, :m] = ds[v].values
@@ -190,7 +196,9 @@ def scenario(ship: Ship, cfg: dict, progress: bool = False, radiation: xr.Datase
                             outline_halfbreadth=("station", 0.5 * sp["breadth"].values))
     for k in ev_names:
         out[k] = (("loading", "case"), ev[k].astype(int) if k in ("capsized", "broach", "surf_riding") else ev[k])
+    out["step_error"] = (("loading", "case"), step)
     out.attrs.update(ship=ship.name, speed_kn=float(cfg["speed_kn"]), heading_deg=float(cfg["heading_deg"]), dt=dt,
+                     step_seconds=check_s,
                      waterline=cfg.get("waterline", "planar"), dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))),
                      lcg=float(model.p[K.P_XG]),
                      reference="Lin, Meinhold & Salvesen (1998), USCG CG-D-17-98, Tables 3-4, Figs 7-14",
@@ -531,7 +539,7 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
     from scipy.stats import binomtest
     from tqdm import tqdm
 
-    from stabflow.validation.ensemble import REFINE, TRAJECTORY_S, relative_trajectory_error
+    from stabflow.validation.ensemble import TRAJECTORY_S
 
     mc = cfg["map"]
     lspec = cfg["loadings"][mc["loading"]]
@@ -556,11 +564,7 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
                 waves = sea.components(int(mc["seed"]), rec)
                 ds = simulate_six_dof(model, waves, dur, dt)
                 if r == 0:
-                    # the step: the first seconds of the cell's first record again at dt / REFINE
-                    fine = simulate_six_dof(model, waves, check_s, dt / REFINE)
-                    step[i, j] = relative_trajectory_error(*(np.radians(np.column_stack(
-                        [d["roll"].values, d["yaw"].values])) for d in (ds.sel(time=slice(None, check_s)), fine)),
-                        REFINE)
+                    step[i, j] = _step_error(model, waves, ds, dt, check_s)
                 e = record_events(ds, broach_deg=float(cfg["broach_deg"]), celerity=G / sea.modal_frequency,
                                   surf_tolerance=float(cfg["surf_tolerance"]), surf_min_s=float(cfg["surf_min_s"]),
                                   heading_deg=h)
@@ -593,23 +597,44 @@ def probability_map(ship: Ship, cfg: dict, progress: bool = False, radiation: xr
     return annotate(out)
 
 
-def map_step_row(pm: xr.Dataset):
-    """The probability map's step-size row (consistency) from :func:`probability_map`'s dataset: the
-    largest ``map_step_error`` over the cells against the ensembles' trajectory tolerance
-    (``validation.ensemble.TOL_TRAJECTORY``)."""
+def _step_error(model: SixDof, waves, ds: xr.Dataset, dt: float, seconds: float) -> float:
+    """The step's check of a record ``ds`` simulated at ``dt``: its first ``seconds`` again at dt /
+    ``REFINE``, the largest roll or yaw difference relative to the largest value (at least 1
+    degree) [%] (``validation.ensemble.relative_trajectory_error``, the ensembles' measure)."""
+    from stabflow.validation.ensemble import REFINE, relative_trajectory_error
+
+    fine = simulate_six_dof(model, waves, seconds, dt / REFINE)
+    return relative_trajectory_error(*(np.radians(np.column_stack([d["roll"].values, d["yaw"].values]))
+                                       for d in (ds.sel(time=slice(None, seconds)), fine)), REFINE)
+
+
+def _step_row(err: np.ndarray, what: str, dt: float, seconds: float):
+    """A step-size row (consistency): the largest of ``err`` [%] (one per record, :func:`_step_error`)
+    against the ensembles' trajectory tolerance (``validation.ensemble.TOL_TRAJECTORY``); FAIL with the
+    reason where a record has none."""
     from stabflow.validation import run_check
     from stabflow.validation.ensemble import REFINE, TOL_TRAJECTORY
 
-    dt = float(pm.attrs["map_dt"])
-    name = (f"probability map, step size: roll and yaw over the first {pm.attrs['map_step_seconds']:g} s of each "
-            f"cell's first record at dt = {dt:g} s vs dt = {dt / REFINE:g} s ({pm['map_step_error'].size} cells): "
-            "largest difference / largest value (at least 1 deg)")
-    ref = f"the same records at dt / {REFINE} = {dt / REFINE:g} s"
+    name = (f"{what}, step size: roll and yaw over the first {seconds:g} s at dt = {dt:g} s vs dt = "
+            f"{dt / REFINE:g} s ({np.size(err)} records): largest difference / largest value (at least 1 deg)")
 
     def value():
-        e = pm["map_step_error"].values
-        if not np.all(np.isfinite(e)):
-            raise ValueError(f"{int(np.sum(~np.isfinite(e)))} cells without a step error")
-        return float(np.max(e))
+        if not np.all(np.isfinite(err)):
+            raise ValueError(f"{int(np.sum(~np.isfinite(err)))} records without a step error")
+        return float(np.max(err))
 
-    return run_check(value, name, "%", ref, "consistency", tolerance=TOL_TRAJECTORY)
+    return run_check(value, name, "%", f"the same records at dt / {REFINE} = {dt / REFINE:g} s", "consistency",
+                     tolerance=TOL_TRAJECTORY)
+
+
+def scenario_step_row(ds: xr.Dataset):
+    """The scenario's step-size row from :func:`scenario`'s dataset (every loading and case)."""
+    return _step_row(ds["step_error"].values, "paper 004's cases", float(ds.attrs["dt"]),
+                     float(ds.attrs["step_seconds"]))
+
+
+def map_step_row(pm: xr.Dataset):
+    """The probability map's step-size row from :func:`probability_map`'s dataset (each cell's first
+    record)."""
+    return _step_row(pm["map_step_error"].values, "probability map, each cell's first record",
+                     float(pm.attrs["map_dt"]), float(pm.attrs["map_step_seconds"]))
