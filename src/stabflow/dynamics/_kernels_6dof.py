@@ -114,7 +114,7 @@ MAX_EVENTS = 4
 #: hysteresis of the modes' switches [rad, rad/s] (``_modes``)
 MODE_BAND = 1e-6
 #: a span whose modes are the same at both ends is searched for a switch and back at the points
-#: dividing it into this many equal parts (``_simulate6``, ``_switched_inside``)
+#: dividing it into this many equal parts (``_simulate6``, ``_first_change``)
 EVENT_SAMPLES = 8
 
 # record status
@@ -855,25 +855,30 @@ def _hermite_state(c, h, sa, ka, sb, kb, out):
 
 
 @njit(cache=True, inline="always")
-def _switched_inside(m, foils, helm, modes, nat, h, sa, k1, k2, k3, k4, tmp):
-    """True if the modes differ from ``modes`` at any of the EVENT_SAMPLES - 1 interior points of
-    the RK4 span of length ``h`` [s] from ``sa`` with stages ``k1`` ... ``k4``, on the method's
-    continuous extension of order 3 (Hairer, Norsett & Wanner, Solving ODEs I, II.6: weights
-    b1 = c - 3 c^2 / 2 + 2 c^3 / 3, b2 = b3 = c^2 - 2 c^3 / 3, b4 = -c^2 / 2 + 2 c^3 / 3, the step's
-    own at c = 1). ``nat`` and ``tmp`` are work arrays."""
+def _first_change(m, foils, helm, modes, nat, h, sa, k1, k2, k3, k4, s, kb, tmp, hermite):
+    """The first of the EVENT_SAMPLES - 1 interior points c = q / EVENT_SAMPLES of the RK4 span of
+    length ``h`` [s] from ``sa`` (stages ``k1`` ... ``k4``) to ``s`` (rate ``kb``) where the modes
+    differ from ``modes`` (1.0: at none). ``hermite``: on the span's cubic Hermite interpolant (from
+    the states and rates at both ends), else on the method's continuous extension of order 3 (its
+    stages only; Hairer, Norsett & Wanner, Solving ODEs I, II.6: weights b1 = c - 3 c^2 / 2 +
+    2 c^3 / 3, b2 = b3 = c^2 - 2 c^3 / 3, b4 = -c^2 / 2 + 2 c^3 / 3, the step's own at c = 1; ``kb``
+    unread). ``nat`` and ``tmp`` are work arrays."""
     for q in range(1, EVENT_SAMPLES):
         c = q / EVENT_SAMPLES
-        c2 = c * c
-        c3 = c2 * c
-        b1 = h * (c - 1.5 * c2 + 2.0 * c3 / 3.0)
-        b2 = h * (c2 - 2.0 * c3 / 3.0)
-        b4 = h * (2.0 * c3 / 3.0 - 0.5 * c2)
-        for i in range(sa.shape[0]):
-            tmp[i] = sa[i] + b1 * k1[i] + b2 * (k2[i] + k3[i]) + b4 * k4[i]
+        if hermite:
+            _hermite_state(c, h, sa, k1, s, kb, tmp)
+        else:
+            c2 = c * c
+            c3 = c2 * c
+            b1 = h * (c - 1.5 * c2 + 2.0 * c3 / 3.0)
+            b2 = h * (c2 - 2.0 * c3 / 3.0)
+            b4 = h * (2.0 * c3 / 3.0 - 0.5 * c2)
+            for i in range(sa.shape[0]):
+                tmp[i] = sa[i] + b1 * k1[i] + b2 * (k2[i] + k3[i]) + b4 * k4[i]
         _modes(m, foils, tmp, helm, modes, nat)
         if not _same(nat, modes):
-            return True
-    return False
+            return c
+    return 1.0
 
 
 @njit(cache=True, nogil=True)
@@ -895,7 +900,7 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
     rest of the step follows, at most ``MAX_EVENTS`` times a step. Where the modes at both ends
     agree, a branch left and re-entered inside the step (the rudder's angle of attack carried past
     its stall angle and back) is looked for at those points on RK4's continuous extension
-    (``_switched_inside``; from its stages, no right-hand side more), and a switch found there is
+    (``_first_change``; from its stages, no right-hand side more), and a switch found there is
     located as above (unless the Hermite interpolant shows none: a borderline graze). Between the
     line table's half-step rows, the wave is their quadratic interpolation in time."""
     ns = s0.shape[0]
@@ -945,8 +950,8 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
             # the same modes at both ends: a branch left and re-entered within the span (an angle of
             # attack grazing the stall angle) is looked for at EVENT_SAMPLES - 1 interior points of
             # RK4's own continuous extension (its stages: no right-hand side more)
-            if same and (events == MAX_EVENTS or not _switched_inside(m, foils, helm, modes, nat, h, sa, k1, k2, k3,
-                                                                        k4, tmp)):
+            if same and (events == MAX_EVENTS or _first_change(m, foils, helm, modes, nat, h, sa, k1, k2, k3, k4, s,
+                                                                 kb, tmp, False) == 1.0):
                 break
             if events == MAX_EVENTS:
                 for q in range(nf + 2):
@@ -955,16 +960,8 @@ def _simulate6(xs, dx, ys, zs, npts, tab, lim, p, m, foils, strips, ltab, decay,
             # the first switch on the Hermite interpolant of (sa, k1) and (s, kb): bracketed by the
             # same interior points (so that of several crossings the first is taken), then bisected
             ok &= _stage(a, j, n, dt, 1.0, sub, s, helm, modes, kb, f, wave, work, mq, r)
-            lo = 0.0
-            hi = 1.0
-            for q in range(1, EVENT_SAMPLES):
-                c = q / EVENT_SAMPLES
-                _hermite_state(c, h, sa, k1, s, kb, tmp)
-                _modes(m, foils, tmp, helm, modes, nat)
-                if not _same(nat, modes):
-                    hi = c
-                    break
-                lo = c
+            hi = _first_change(m, foils, helm, modes, nat, h, sa, k1, k2, k3, k4, s, kb, tmp, True)
+            lo = hi - 1.0 / EVENT_SAMPLES if hi < 1.0 else 1.0 - 1.0 / EVENT_SAMPLES  # the sample before
             if same and hi == 1.0:
                 break  # the Hermite interpolant shows none (the extension's switch was borderline)
             for _ in range(40):
