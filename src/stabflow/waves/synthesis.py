@@ -82,11 +82,15 @@ def one_blas_thread():
     The limit is process-wide, so the context counts its users: the first to enter sets it and the
     last to leave restores it. (Restoring on every exit let one Python thread of the split-time
     step lift the limit while another was still in its product: the SLURM and local files differed.)
+    Both are done on one helper thread: OpenBLAS (0.3.30 and 0.3.31 of the scipy and numpy wheels)
+    can ignore a raise of its thread count from a thread other than the one that lowered it, so a
+    limit set by one Python thread and restored by another stayed at one thread (found by CI).
     """
     global _blas_users, _blas_limiter
     with _blas_lock:
         if _blas_users == 0:
-            _blas_limiter = _blas_controller().limit(limits=1, user_api="blas")
+            _blas_limiter = _blas_control().submit(
+                lambda: _blas_controller().limit(limits=1, user_api="blas")).result()
         _blas_users += 1
     try:
         yield
@@ -94,13 +98,21 @@ def one_blas_thread():
         with _blas_lock:
             _blas_users -= 1
             if _blas_users == 0:
-                _blas_limiter.restore_original_limits()
+                _blas_control().submit(_blas_limiter.restore_original_limits).result()
                 _blas_limiter = None
 
 
 _blas_lock = threading.Lock()
 _blas_users = 0
 _blas_limiter = None
+
+
+@functools.lru_cache(maxsize=1)
+def _blas_control():
+    """The one thread that sets and restores the BLAS limit (see :func:`one_blas_thread`)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    return ThreadPoolExecutor(max_workers=1, thread_name_prefix="stabflow-blas-limit")
 
 
 @functools.lru_cache(maxsize=1)
