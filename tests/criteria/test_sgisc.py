@@ -80,13 +80,32 @@ def test_rpr_formula():
 
 
 def test_level1_rows(box):
-    """Sourced level-1 standards give verdicts; the unsourced surf-riding limits stay NOT EVALUATED."""
+    """Sourced level-1 standards give verdicts; the surf-riding limits, read in drafts only, stay NOT
+    EVALUATED with the verdict against the drafts (L 200 m, Fn 0.3) beside it as indicative."""
     _, gw = box
     rows = _rows(gw, Standards())
     assert rows["pure loss: GMmin by waterplane inertia at d_L"].verdict == "PASS"
     assert rows["parametric rolling: delta GM1 / GM by waterplane inertias"].verdict == "PASS"
     k = "surf-riding/broaching: L above the limit or Fn below the limit"
     assert rows[k].verdict == "NOT EVALUATED" and "missing: sgisc." in rows[k].reason
+    # L 100 m below the draft's 200 m: Fn decides, 0.2 below the draft's 0.3
+    assert rows[k].draft_verdict == "PASS" and rows[k].draft_limit == 0.3
+    assert "Indicative, against the draft's limit 0.3" in rows[k].reason and "ISSW_2017_s07-p2.pdf" in rows[k].draft_source
+    rows = _rows(gw, Standards(), fn=0.35)
+    assert rows[k].verdict == "NOT EVALUATED" and rows[k].draft_verdict == "FAIL"
+    # without a service speed the row has a missing item no draft covers: no indicative verdict
+    rows = _rows(gw, Standards(), fn=None)
+    assert rows[k].verdict == "NOT EVALUATED" and rows[k].draft_verdict == "" and "service speed" in rows[k].reason
+
+
+def test_surf_riding_draft_length_limit(box, tmp_path):
+    """A ship longer than the draft's 200 m: indicative PASS on its length, the row's unit metres."""
+    _, gw = box
+    simple = {m: sgisc.simplified_level1(Sections(build_hull(load_ship(SHIPS / "barge.yaml"))), L * B * T, KG, T, 12.0, L,
+                                         sw, 0.25) for m, sw in (("pure_loss", 0.0334), ("parametric", 0.0167))}
+    rows = {r.criterion: r for r in sgisc.level1_rows(gw, simple, 1.5556, 250.0, 0.35, Standards(), (0.17, "test"), 1.0)}
+    r = rows["surf-riding/broaching: L above the limit or Fn below the limit"]
+    assert r.verdict == "NOT EVALUATED" and r.draft_verdict == "PASS" and r.unit == "m" and r.draft_limit == 200.0
 
 
 def test_override_makes_a_verdict(box, tmp_path):
@@ -100,6 +119,7 @@ def test_override_makes_a_verdict(box, tmp_path):
     rows = _rows(gw, Standards(p))
     k = "surf-riding/broaching: L above the limit or Fn below the limit"
     assert rows[k].verdict == "PASS" and "not vulnerable" in rows[k].note  # L 100 m above 50 m
+    assert rows[k].draft_verdict == "" and rows[k].draft_limit is None  # the adopted value replaces the draft
     assert "test document 1.2" in rows[k].source and "override file" in rows[k].source
     p.write_text(
         "criteria_overrides:\n"

@@ -78,3 +78,66 @@ def test_round_off_meets_the_limit():
     assert Row("r", "l", 16.0 + 1e-12, "deg", 16.0, "<=", "s").verdict == "PASS"
     assert Row("r", "l", float("inf"), "deg", 16.0, "<=", "s").verdict == "FAIL"
     assert Row("r", "l", float("nan"), "deg", 16.0, "<=", "s").verdict == "NOT EVALUATED"
+
+
+def _copy_data(tmp_path):
+    import shutil
+
+    from stabflow.criteria.standards import DATA_DIR, FILES
+
+    for f in FILES:
+        shutil.copy(DATA_DIR / f"{f}.yaml", tmp_path / f"{f}.yaml")
+    return tmp_path / "sgisc.yaml"
+
+
+def test_drafts_are_checked(tmp_path):
+    """A draft sits only beside a null value, with a number, its document, where it was read and the
+    words printed; each shipped draft names an ISSW paper's file."""
+    std = Standards()
+    drafts = {k: e["draft"] for k, e in std.entries.items() if "draft" in e}
+    assert len(drafts) >= 5
+    for k, d in drafts.items():
+        assert std.get(k).value is None and std.get(k).draft["value"] == d["value"], k
+        assert "PDF_STAB_ISSW" in d["read_at"] and f"{d['value']:g}" in d["quote"], k
+    import yaml
+
+    p = _copy_data(tmp_path)
+    data = yaml.safe_load(p.read_text())
+    entry = data["failure_modes"]["surf_riding_broaching"]["level_2"]["R_SR"]
+    for change, match in (({"value": 0.01, "read_at": "x"}, "R_SR.draft: a draft is kept only where the adopted value is missing"),
+                          ({"draft": {**entry["draft"], "value": "abc"}}, "R_SR.draft.value"),
+                          ({"draft": {k: v for k, v in entry["draft"].items() if k != "quote"}}, "R_SR.draft: give value")):
+        data["failure_modes"]["surf_riding_broaching"]["level_2"]["R_SR"] = {**entry, **change}
+        p.write_text(yaml.safe_dump(data))
+        with pytest.raises(StabflowError, match=match):
+            Standards(data_dir=tmp_path)
+
+
+def test_an_override_replaces_the_draft(tmp_path):
+    """A user's value for a drafted entry: the Standard has its value and no draft."""
+    key = "sgisc.failure_modes.surf_riding_broaching.level_2.R_SR"
+    p = tmp_path / "o.yaml"
+    p.write_text(f"criteria_overrides:\n  - {{key: {key}, value: 0.004, source: 'owner copy 2.12.3'}}\n")
+    s = Standards(p).get(key)
+    assert s.value == 0.004 and s.draft is None and s.cite_draft() == ""
+
+
+def test_indicative_verdict_only_where_drafts_cover_every_missing_item():
+    """The row stays NOT EVALUATED; the indicative verdict needs every missing item drafted and a value."""
+    from stabflow.criteria.standards import Standard
+    from stabflow.criteria.verdicts import against
+
+    d = {"value": 0.3, "document": "draft", "read_at": "here", "quote": "0.3"}
+    s = Standard("k", None, "-", "doc 1", "", "not read", d)
+    r = against("c", "l", 0.2, "-", s, "<=")
+    assert r.verdict == "NOT EVALUATED" and r.draft_verdict == "PASS" and "Indicative" in r.reason
+    assert against("c", "l", 0.4, "-", s, "<=").draft_verdict == "FAIL"
+    assert against("c", "l", float("nan"), "-", s, "<=").draft_verdict == ""
+    assert against("c", "l", 0.2, "-", s, "<=", missing=["the wave cases"]).draft_verdict == ""
+    undrafted = Standard("k2", None, "-", "doc 2", "", "not read")
+    assert against("c", "l", 0.2, "-", undrafted, "<=").draft_verdict == ""
+    # another needed standard missing: covered only if it is drafted
+    other = Standard("k3", None, "m", "doc 3", "", "not read", {**d, "value": 200})
+    m = [f"{other.key} ({other.source})"]
+    assert against("c", "l", 0.2, "-", s, "<=", missing=m, drafted=[other]).draft_verdict == "PASS"
+    assert against("c", "l", 0.2, "-", s, "<=", missing=m).draft_verdict == ""

@@ -149,14 +149,20 @@ def level1_rows(gw: xr.Dataset, simple: dict, gm0: float, lwl: float, fn: float 
     lim_f = std.get_or_missing(f"{SG}.surf_riding_broaching.level_1.froude_number_limit", f"{CIRC}, surf-riding level 1")
     # one row: not vulnerable when L is above its limit OR Fn below its limit
     name, lvl = "surf-riding/broaching: L above the limit or Fn below the limit", "SGISC surf-riding, level 1"
+    draft_l = None if lim_l.available or lim_l.draft is None else float(lim_l.draft["value"])
     if lim_l.available and lwl >= float(lim_l.value):
         rows.append(against(name, lvl, lwl, "m", lim_l, ">=", note="L above the length limit: not vulnerable"))
+    elif draft_l is not None and lwl >= draft_l:
+        # the adopted length limit unread: the draft's says "not vulnerable" (indicative only)
+        rows.append(against(name, lvl, lwl, "m", lim_l, ">=", note="L above the draft's length limit"))
     else:
         miss = [] if fn is not None else ["service speed (ship config criteria.service_speed_kn)"]
         if not lim_l.available:
             miss.append(f"{lim_l.key} ({lim_l.source})")
+        below = (f", below the length limit {lim_l.value:g} m" if lim_l.available else
+                 f", below the draft's length limit {draft_l:g} m" if draft_l is not None else "")
         rows.append(against(name, lvl, fn if fn is not None else math.nan, "-", lim_f, "<=", missing=miss,
-                            note=f"L = {lwl:.1f} m" + (f", below the length limit {lim_l.value:g} m" if lim_l.available else "")))
+                            drafted=[lim_l], note=f"L = {lwl:.1f} m" + below))
     return rows
 
 

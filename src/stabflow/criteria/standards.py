@@ -5,6 +5,12 @@ Rec. 34 scatter table). A *numeric entry* is a mapping with ``value`` (a number,
 null), ``unit``, ``source`` (document and paragraph) and ``read_at`` (where it was actually read);
 null values carry ``missing`` (what was searched). A user holding the documents supplies missing
 values in an override file (``criteria_overrides``), validated here, its source kept in the results.
+
+A null entry may carry a ``draft``: the value a readable draft of the document printed (``value``,
+``document``: the draft and paragraph, ``read_at``, ``quote``: the sentence as printed). A draft
+never makes a verdict: the row stays NOT EVALUATED and shows, beside it, the verdict it would have
+against the draft's value ("indicative"), so that a reader sees where the ship stands while the
+adopted text is unread.
 """
 
 from __future__ import annotations
@@ -33,6 +39,8 @@ class Standard:
     source : the document and paragraph/table it belongs to.
     read_at : where it was read (page or repository file), or the override file.
     missing : why it is None (what was searched), else "".
+    draft : for a missing value, the value a readable draft printed: a mapping with ``value``,
+        ``document``, ``read_at`` and ``quote`` (see the module's docstring), else None.
     """
 
     key: str
@@ -41,6 +49,7 @@ class Standard:
     source: str
     read_at: str
     missing: str = ""
+    draft: dict | None = None
 
     @property
     def available(self) -> bool:
@@ -49,6 +58,12 @@ class Standard:
     def cite(self) -> str:
         """Short citation for a results row: the source, and where it was read."""
         return f"{self.source} [read at: {self.read_at}]" if self.read_at else self.source
+
+    def cite_draft(self) -> str:
+        """Citation of the draft's value ("" without a draft)."""
+        if self.draft is None:
+            return ""
+        return f"{self.draft['document']} [read at: {self.draft['read_at']}; printed: \"{self.draft['quote']}\"]"
 
 
 def _as_text(v) -> str:
@@ -73,14 +88,32 @@ def _entries(node, prefix: str, out: dict, where: Path) -> None:
                 raise StabflowError(f"{where}: {prefix}.missing: a null value must say what was searched")
             if node["value"] is not None and not node.get("read_at"):
                 raise StabflowError(f"{where}: {prefix}.read_at: a value must say where it was read")
+            if "draft" in node:
+                _check_draft(node, prefix, where)
             out[prefix] = node
         for k, v in node.items():
-            if isinstance(v, (dict, list)) and k not in ("value",):
+            if isinstance(v, (dict, list)) and k not in ("value", "draft"):
                 _entries(v, f"{prefix}.{k}", out, where)
     elif isinstance(node, list):
         for i, v in enumerate(node):
             if isinstance(v, dict):
                 _entries(v, f"{prefix}.{i}", out, where)
+
+
+def _check_draft(node: dict, prefix: str, where: Path) -> None:
+    """A draft's value: only beside a null value, a number, with its document, where it was read and
+    the words printed."""
+    d = node["draft"]
+    field = f"{prefix}.draft"
+    if node["value"] is not None:
+        raise StabflowError(f"{where}: {field}: a draft is kept only where the adopted value is missing (null)")
+    if not isinstance(d, dict) or set(d) != {"value", "document", "read_at", "quote"}:
+        raise StabflowError(f"{where}: {field}: give value, document, read_at and quote, nothing else")
+    if not isinstance(d["value"], (int, float)) or isinstance(d["value"], bool):
+        raise StabflowError(f"{where}: {field}.value: {d['value']!r} is not a number")
+    for k in ("document", "read_at", "quote"):
+        if not str(d[k]).strip():
+            raise StabflowError(f"{where}: {field}.{k}: empty")
 
 
 class Standards:
@@ -139,7 +172,8 @@ class Standards:
             raise StabflowError(f"criteria data: no entry '{key}'")
         e = self.entries[key]
         return Standard(key, e["value"], str(e.get("unit", "")), str(e["source"]), _as_text(e.get("read_at")),
-                        "" if e["value"] is not None else str(e.get("missing", "")))
+                        "" if e["value"] is not None else str(e.get("missing", "")),
+                        e.get("draft") if e["value"] is None else None)
 
     def get_or_missing(self, key: str, source: str) -> Standard:
         """The standard at ``key``, or a missing Standard (value None) when the data files hold no

@@ -1,7 +1,9 @@
 """Criteria results as rows: criterion, level, value, standard with its source, verdict.
 
 A verdict is PASS or FAIL only when the computed value and every standard it needs are available;
-otherwise NOT EVALUATED with the missing items named. Rows are never dropped.
+otherwise NOT EVALUATED with the missing items named. Rows are never dropped. Where the only missing
+items are standards whose readable drafts printed a value (``Standard.draft``), the row also carries
+the verdict it would have against the drafts ("indicative"): never the row's verdict.
 """
 
 from __future__ import annotations
@@ -34,6 +36,9 @@ class Row:
     source : the standard's citation.
     missing : names of the missing items (standards or inputs); non-empty -> NOT EVALUATED.
     note : how the value was obtained, or why it is not evaluated beyond the missing items.
+    draft_limit : the limit a draft of the document printed, where the adopted one is missing.
+    draft_source : the drafts' citations.
+    blockers : the missing items no draft covers (an indicative verdict needs none).
     """
 
     criterion: str
@@ -45,17 +50,30 @@ class Row:
     source: str
     missing: list[str] = field(default_factory=list)
     note: str = ""
+    draft_limit: float | None = None
+    draft_source: str = ""
+    blockers: list[str] = field(default_factory=list)
+
+    def _meets(self, limit: float) -> bool:
+        # a value within round-off (ROUND_OFF relative) of its limit meets it: a wall-sided hull's
+        # freeboard-volume ratio is exactly 1 in theory and 1 - 1e-16 in floating point
+        slack = ROUND_OFF * max(abs(limit), abs(self.value) if math.isfinite(self.value) else 0.0)
+        return self.value >= limit - slack if self.sense == ">=" else self.value <= limit + slack
 
     @property
     def verdict(self) -> str:
         # an infinite value is a result (e.g. no steady-wind equilibrium: phi0 = inf fails); NaN is not
         if self.missing or self.limit is None or math.isnan(self.value):
             return "NOT EVALUATED"
-        # a value within round-off (ROUND_OFF relative) of its limit meets it: a wall-sided hull's
-        # freeboard-volume ratio is exactly 1 in theory and 1 - 1e-16 in floating point
-        slack = ROUND_OFF * max(abs(self.limit), abs(self.value) if math.isfinite(self.value) else 0.0)
-        ok = self.value >= self.limit - slack if self.sense == ">=" else self.value <= self.limit + slack
-        return "PASS" if ok else "FAIL"
+        return "PASS" if self._meets(self.limit) else "FAIL"
+
+    @property
+    def draft_verdict(self) -> str:
+        """PASS or FAIL against the drafts' limit where only drafted standards are missing, else ""."""
+        if (self.verdict != "NOT EVALUATED" or self.draft_limit is None or self.blockers
+                or math.isnan(self.value)):
+            return ""
+        return "PASS" if self._meets(self.draft_limit) else "FAIL"
 
     @property
     def reason(self) -> str:
@@ -66,17 +84,31 @@ class Row:
             why = ["the value could not be computed"]
         if self.limit is None and not self.missing:
             why.append("no standard value")
-        return "missing: " + "; ".join(why) + (f". {self.note}" if self.note else "")
+        text = "missing: " + "; ".join(why) + (f". {self.note}" if self.note else "")
+        if self.draft_verdict:
+            text += (f". Indicative, against the draft's limit {self.draft_limit:g} (not the adopted text): "
+                     f"{self.draft_verdict}")
+        return text
 
 
 def against(criterion: str, level: str, value: float, unit: str, std: Standard, sense: str,
-            note: str = "", missing: list[str] | None = None) -> Row:
-    """A row comparing ``value`` with the standard ``std`` (NOT EVALUATED when std has no value)."""
+            note: str = "", missing: list[str] | None = None, drafted: list[Standard] | None = None) -> Row:
+    """A row comparing ``value`` with the standard ``std`` (NOT EVALUATED when std has no value).
+
+    ``missing`` names other missing items; ``drafted`` other missing standards the row needs (the
+    caller's ``missing`` names them too) whose drafts count toward the indicative verdict."""
     miss = list(missing or [])
+    covered = {f"{s.key} ({s.source})" for s in (drafted or []) if s.draft is not None}
     if not std.available:
         miss.append(f"{std.key} ({std.source})")
+        if std.draft is not None:
+            covered.add(miss[-1])
+    draft_limit = float(std.draft["value"]) if not std.available and std.draft is not None else None
     limit = float(std.value) if std.available else None
-    return Row(criterion, level, float(value), unit, limit, sense, std.cite(), miss, note)
+    sources = [s.cite_draft() for s in [std, *(drafted or [])] if not s.available and s.draft is not None]
+    return Row(criterion, level, float(value), unit, limit, sense, std.cite(), miss, note,
+               draft_limit=draft_limit if draft_limit is not None else (limit if sources else None),
+               draft_source="; ".join(sources), blockers=[m for m in miss if m not in covered])
 
 
 def rows_dataset(rows: list[Row], ship: str) -> xr.Dataset:
@@ -93,6 +125,10 @@ def rows_dataset(rows: list[Row], ship: str) -> xr.Dataset:
             "criterion_source": ("criterion", [r.source for r in rows]),
             "verdict": ("criterion", [r.verdict for r in rows]),
             "verdict_reason": ("criterion", [r.reason for r in rows]),
+            "verdict_draft": ("criterion", [r.draft_verdict for r in rows]),
+            "criterion_draft_limit": ("criterion", np.array([np.nan if r.draft_limit is None else r.draft_limit
+                                                             for r in rows], float)),
+            "criterion_draft_source": ("criterion", [r.draft_source for r in rows]),
         },
         coords={"criterion": n},
     )

@@ -297,11 +297,16 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
              "value": float(d.criterion_value[i]), "unit": str(d.criterion_unit[i].values),
              "limit": None if not np.isfinite(d.criterion_limit[i]) else float(d.criterion_limit[i]),
              "sense": str(d.criterion_sense[i].values), "verdict": str(d.verdict[i].values),
-             "reason": str(d.verdict_reason[i].values), "source": str(d.criterion_source[i].values)}
+             "reason": str(d.verdict_reason[i].values), "source": str(d.criterion_source[i].values),
+             # a draft's limit where the adopted one is missing (files before 2026-12-07 have none)
+             "draft_limit": (float(d.criterion_draft_limit[i]) if "criterion_draft_limit" in d
+                             and np.isfinite(d.criterion_draft_limit[i]) else None),
+             "draft_source": str(d.criterion_draft_source[i].values) if "criterion_draft_source" in d else "",
+             "draft_verdict": str(d.verdict_draft[i].values) if "verdict_draft" in d else ""}
             for i in range(d.sizes["criterion"])]
     dsa = _dsa_data(name, results, figdir)
     if dsa is not None:
-        rows.append(dsa.pop("row"))
+        rows.append({"draft_limit": None, "draft_source": "", "draft_verdict": "", **dsa.pop("row")})
     counts = {v: sum(r["verdict"] == v for r in rows) for v in ("PASS", "FAIL", "NOT EVALUATED")}
     wc = {k[3:]: float(d[k]) for k in d.data_vars if k.startswith("wc_")}
 
