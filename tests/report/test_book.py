@@ -1,6 +1,7 @@
 """The report's number formats (``stabflow.report.book``)."""
 
 import math
+from pathlib import Path
 
 from stabflow.report.book import _fmt, _rate
 
@@ -23,3 +24,25 @@ def test_rate_text_rounds_the_mantissa_into_its_decade():
 
     assert rate_text(0.0, -300.0001).startswith("1e-300 ")
     assert math.isnan(rice_log10_rate(math.nan, 1.0, 1.0)) and rice_log10_rate(1.0, 0.0, 1.0) == -math.inf
+
+
+def test_criteria_table_rows_have_one_cell_per_column():
+    """The criteria chapter's verdict table (the template's own block): a row with a draft's limit and
+    an indicative verdict, one without, and the DSA's row keep seven cells each."""
+    import re
+
+    from stabflow.report.book import _env
+
+    text = (Path(__file__).resolve().parents[2] / "src/stabflow/report/templates/criteria.md.j2").read_text()
+    block = re.search(r"{% call\(r\) m\.table.*?{% endcall %}\n", text, re.S).group(0)
+    base = {"name": "c", "level": "l", "value": 0.35, "unit": "-", "limit": None, "sense": "<=", "verdict": "NOT EVALUATED",
+            "reason": "missing: x", "source": "doc", "draft_limit": None, "draft_source": "", "draft_verdict": ""}
+    rows = [base, {**base, "draft_limit": 0.3, "draft_source": "draft doc", "draft_verdict": "FAIL"},
+            {**base, "limit": 0.0026, "verdict": "FAIL", "unit": "1/year"}]
+    out = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(rows=rows)
+    lines = [x for x in out.splitlines() if x.startswith("| ")]
+    assert len(lines) == 4  # header and three rows
+    for x in lines:
+        assert x.count(" | ") == 6, x
+    assert "(indicative against the draft: FAIL) | missing: x" in lines[2] and "(draft: <= 0.3)" in lines[2]
+    assert "draft: draft doc" in lines[2] and "draft" not in lines[1]
