@@ -257,7 +257,7 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "verdict": ("1", "PASS, FAIL or NOT EVALUATED"),
     "verdict_reason": ("1", "missing items (NOT EVALUATED) or how the value was obtained"),
     "verdict_draft": ("1", "verdict against a draft's value where only drafted standards are missing (indicative, never the verdict; empty otherwise)"),
-    "criterion_draft_limit": ("1", "the standard's value in a readable draft of the document, where the adopted value is missing (NaN otherwise)"),
+    "criterion_draft_limit": ("1", "limit of the indicative verdict: the standard's value in a readable draft where the adopted one is missing, the adopted one where only another needed standard is drafted (NaN otherwise)"),
     "criterion_draft_source": ("1", "the draft, the paragraph and where it was read, with the words printed"),
     "gm_wave_min": ("m", "smallest GM on a wave of the ship's length over crest positions"),
     "gm_wave_max": ("m", "largest GM on a wave of the ship's length over crest positions"),

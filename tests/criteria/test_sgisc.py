@@ -128,6 +128,18 @@ def test_override_makes_a_verdict(box, tmp_path):
     rows = _rows(gw, Standards(p))
     assert rows[k].verdict == "FAIL"  # L below 200 m and Fn 0.2 above 0.1
     assert "test document 1.3" in rows[k].source
+    # only the Froude limit supplied: Fn below it clears the ship whatever the length limit
+    p.write_text("criteria_overrides:\n  - {key: sgisc.failure_modes.surf_riding_broaching.level_1.froude_number_limit, "
+                 "value: 0.25, source: 'test document 1.3'}\n")
+    rows = _rows(gw, Standards(p))
+    assert rows[k].verdict == "PASS" and rows[k].draft_verdict == ""
+    # Fn above it: the length limit decides, drafted only: NOT EVALUATED, indicative FAIL against the
+    # adopted 0.1, which the reason does not call a draft's
+    p.write_text("criteria_overrides:\n  - {key: sgisc.failure_modes.surf_riding_broaching.level_1.froude_number_limit, "
+                 "value: 0.1, source: 'test document 1.3'}\n")
+    rows = _rows(gw, Standards(p))
+    assert rows[k].verdict == "NOT EVALUATED" and rows[k].draft_verdict == "FAIL" and rows[k].draft_limit == 0.1
+    assert "the draft's limit" not in rows[k].reason and "drafts' values of the other missing standards" in rows[k].reason
 
 def test_roll_1dof_free_decay_and_mathieu():
     """Constant restoring (no wave): linear free decay with the damped frequency and decrement of

@@ -91,6 +91,82 @@ def test_blas_limit_restored_in_a_fresh_process():
         _check_two_threads(set(before), [set(x) for x in seen], set(after))
 
 
+def test_blas_limit_set_and_restored_on_one_thread(monkeypatch):
+    """Whichever Python threads enter and leave, the limit is set and restored on one and the same
+    thread (OpenBLAS may ignore a raise from another thread than the one that lowered the count):
+    a stand-in controller records the threads."""
+    import threading
+
+    from stabflow.waves import synthesis
+
+    calls = []
+
+    class Limiter:
+        def restore_original_limits(self):
+            calls.append(("restore", threading.get_ident()))
+
+    class Controller:
+        def limit(self, limits, user_api):
+            calls.append(("limit", threading.get_ident()))
+            return Limiter()
+
+    monkeypatch.setattr(synthesis, "_blas_controller", Controller)
+    entered, a_left, b_in = threading.Event(), threading.Event(), threading.Event()
+
+    def a():
+        with synthesis.one_blas_thread():
+            entered.set()
+            b_in.wait()
+        a_left.set()
+
+    def b():
+        entered.wait()
+        with synthesis.one_blas_thread():
+            b_in.set()
+            a_left.wait()
+
+    ta, tb = threading.Thread(target=a), threading.Thread(target=b)
+    ta.start(), tb.start()
+    ta.join(120), tb.join(120)
+    with synthesis.one_blas_thread():  # and from the main thread
+        pass
+    assert [c for c, _ in calls] == ["limit", "restore", "limit", "restore"]
+    assert len({t for _, t in calls}) == 1 and calls[0][1] not in (ta.ident, tb.ident, threading.get_ident())
+
+
+def test_blas_limit_in_a_forked_child_and_at_exit():
+    """A forked child (the helper thread is not copied) and an atexit handler (the helper accepts no
+    work at shutdown) still enter and leave the context, and the count comes back."""
+    import subprocess
+    import sys
+
+    code = """
+import atexit, os, signal
+import numpy, scipy.linalg
+from threadpoolctl import threadpool_info
+from stabflow.waves.synthesis import one_blas_thread
+def n(): return sorted({d["num_threads"] for d in threadpool_info() if d["user_api"] == "blas"})
+with one_blas_thread(): pass
+before = n()
+pid = os.fork()
+if pid == 0:
+    signal.alarm(60)
+    with one_blas_thread():
+        inside = n()
+    print("child", inside == [1] or not before, n() == before, flush=True)
+    os._exit(0)
+os.waitpid(pid, 0)
+def late():
+    with one_blas_thread():
+        inside = n()
+    print("atexit", inside == [1] or not before, n() == before, flush=True)
+atexit.register(late)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split("\n")[:2] == ["child True True", "atexit True True"], out.stdout + out.stderr[-2000:]
+
+
 def test_station_table_curvature_column_is_dS_dxi():
     """curvature=True appends eta_xixi = dS/dxi, here against central differences of S along x
     (d/dx = cos(beta) d/dxi, heading 30 deg) over +-1 mm, and a zero d2phi/dzdt column without

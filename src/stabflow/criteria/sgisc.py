@@ -152,6 +152,10 @@ def level1_rows(gw: xr.Dataset, simple: dict, gm0: float, lwl: float, fn: float 
     draft_l = None if lim_l.available or lim_l.draft is None else float(lim_l.draft["value"])
     if lim_l.available and lwl >= float(lim_l.value):
         rows.append(against(name, lvl, lwl, "m", lim_l, ">=", note="L above the length limit: not vulnerable"))
+    elif lim_f.available and fn is not None and fn <= float(lim_f.value):
+        # either condition alone clears the ship: a sourced Froude limit it is below needs no length limit
+        rows.append(against(name, lvl, fn, "-", lim_f, "<=", note=f"L = {lwl:.1f} m; Fn below the Froude-number "
+                            "limit: not vulnerable"))
     elif draft_l is not None and lwl >= draft_l:
         # the adopted length limit unread: the draft's says "not vulnerable" (indicative only)
         rows.append(against(name, lvl, lwl, "m", lim_l, ">=", note="L above the draft's length limit"))

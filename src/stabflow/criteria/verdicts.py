@@ -36,9 +36,11 @@ class Row:
     source : the standard's citation.
     missing : names of the missing items (standards or inputs); non-empty -> NOT EVALUATED.
     note : how the value was obtained, or why it is not evaluated beyond the missing items.
-    draft_limit : the limit a draft of the document printed, where the adopted one is missing.
+    draft_limit : the limit of the indicative verdict: a draft's, where the adopted one is missing;
+        the adopted one where only another standard the row needs is drafted.
     draft_source : the drafts' citations.
     blockers : the missing items no draft covers (an indicative verdict needs none).
+    draft_limit_is_drafted : whether ``draft_limit`` is a draft's value (else the adopted one).
     """
 
     criterion: str
@@ -53,6 +55,7 @@ class Row:
     draft_limit: float | None = None
     draft_source: str = ""
     blockers: list[str] = field(default_factory=list)
+    draft_limit_is_drafted: bool = True
 
     def _meets(self, limit: float) -> bool:
         # a value within round-off (ROUND_OFF relative) of its limit meets it: a wall-sided hull's
@@ -86,8 +89,9 @@ class Row:
             why.append("no standard value")
         text = "missing: " + "; ".join(why) + (f". {self.note}" if self.note else "")
         if self.draft_verdict:
-            text += (f". Indicative, against the draft's limit {self.draft_limit:g} (not the adopted text): "
-                     f"{self.draft_verdict}")
+            which = ("the draft's limit" if self.draft_limit_is_drafted else
+                     "the limit, with the drafts' values of the other missing standards,")
+            text += f". Indicative, against {which} {self.draft_limit:g} (not the adopted text): {self.draft_verdict}"
         return text
 
 
@@ -108,7 +112,8 @@ def against(criterion: str, level: str, value: float, unit: str, std: Standard, 
     sources = [s.cite_draft() for s in [std, *(drafted or [])] if not s.available and s.draft is not None]
     return Row(criterion, level, float(value), unit, limit, sense, std.cite(), miss, note,
                draft_limit=draft_limit if draft_limit is not None else (limit if sources else None),
-               draft_source="; ".join(sources), blockers=[m for m in miss if m not in covered])
+               draft_source="; ".join(sources), blockers=[m for m in miss if m not in covered],
+               draft_limit_is_drafted=draft_limit is not None)
 
 
 def rows_dataset(rows: list[Row], ship: str) -> xr.Dataset:

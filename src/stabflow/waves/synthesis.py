@@ -20,8 +20,10 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import os
 import threading
 import warnings
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -89,8 +91,7 @@ def one_blas_thread():
     global _blas_users, _blas_limiter
     with _blas_lock:
         if _blas_users == 0:
-            _blas_limiter = _blas_control().submit(
-                lambda: _blas_controller().limit(limits=1, user_api="blas")).result()
+            _blas_limiter = _on_control_thread(lambda: _blas_controller().limit(limits=1, user_api="blas"))
         _blas_users += 1
     try:
         yield
@@ -98,7 +99,7 @@ def one_blas_thread():
         with _blas_lock:
             _blas_users -= 1
             if _blas_users == 0:
-                _blas_control().submit(_blas_limiter.restore_original_limits).result()
+                _on_control_thread(_blas_limiter.restore_original_limits)
                 _blas_limiter = None
 
 
@@ -108,11 +109,33 @@ _blas_limiter = None
 
 
 @functools.lru_cache(maxsize=1)
-def _blas_control():
+def _blas_control() -> ThreadPoolExecutor:
     """The one thread that sets and restores the BLAS limit (see :func:`one_blas_thread`)."""
-    from concurrent.futures import ThreadPoolExecutor
-
     return ThreadPoolExecutor(max_workers=1, thread_name_prefix="stabflow-blas-limit")
+
+
+def _on_control_thread(fn):
+    """``fn()`` on the helper thread, or in the calling thread where none can run: at interpreter
+    shutdown (an atexit handler, a thread still inside the context when the main thread returned)
+    no new work is accepted, and the limit is then set or restored as well as this thread can."""
+    try:
+        future = _blas_control().submit(fn)
+    except RuntimeError:
+        return fn()
+    return future.result()
+
+
+def _after_fork_in_child():
+    """A forked child has none of the parent's threads (the helper's included) and a copy of the lock
+    that another thread may have held: start afresh. The child's BLAS keeps the parent's count; its
+    first entry records that count as the one to restore."""
+    global _blas_lock, _blas_users, _blas_limiter
+    _blas_lock, _blas_users, _blas_limiter = threading.Lock(), 0, None
+    _blas_control.cache_clear()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_after_fork_in_child)
 
 
 @functools.lru_cache(maxsize=1)
