@@ -91,11 +91,16 @@ def _copy_data(tmp_path):
 
 
 def test_drafts_are_checked(tmp_path):
-    """A draft sits only beside a null value, with a number, its document, where it was read and the
+    """A draft sits only beside a null value, with a number, its source, where it was read and the
     words printed; each shipped draft names an ISSW paper's file."""
     std = Standards()
     drafts = {k: e["draft"] for k, e in std.entries.items() if "draft" in e}
-    assert len(drafts) >= 5
+    fm = "sgisc.failure_modes."
+    assert {k: d["value"] for k, d in drafts.items()} == {
+        fm + "pure_loss_of_stability.level_2.RPL0": 0.06, fm + "pure_loss_of_stability.level_2.RPL2_heel_angle_deg": 25,
+        fm + "parametric_rolling.level_2.RPR0": 0.06, fm + "parametric_rolling.level_2.roll_angle_threshold_deg": 25,
+        fm + "surf_riding_broaching.level_1.length_limit_m": 200, fm + "surf_riding_broaching.level_1.froude_number_limit": 0.3,
+        fm + "surf_riding_broaching.level_2.R_SR": 0.005}
     for k, d in drafts.items():
         assert std.get(k).value is None and std.get(k).draft["value"] == d["value"], k
         assert "PDF_STAB_ISSW" in d["read_at"] and f"{d['value']:g}" in d["quote"], k
@@ -127,7 +132,7 @@ def test_indicative_verdict_only_where_drafts_cover_every_missing_item():
     from stabflow.criteria.standards import Standard
     from stabflow.criteria.verdicts import against
 
-    d = {"value": 0.3, "document": "draft", "read_at": "here", "quote": "0.3"}
+    d = {"value": 0.3, "source": "draft", "read_at": "here", "quote": "0.3"}
     s = Standard("k", None, "-", "doc 1", "", "not read", d)
     r = against("c", "l", 0.2, "-", s, "<=")
     assert r.verdict == "NOT EVALUATED" and r.draft_verdict == "PASS" and "Indicative" in r.reason

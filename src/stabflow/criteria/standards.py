@@ -7,7 +7,7 @@ null values carry ``missing`` (what was searched). A user holding the documents 
 values in an override file (``criteria_overrides``), validated here, its source kept in the results.
 
 A null entry may carry a ``draft``: the value a readable draft of the document printed (``value``,
-``document``: the draft and paragraph, ``read_at``, ``quote``: the sentence as printed). A draft
+``source``: the draft and paragraph, ``read_at``, ``quote``: the sentence as printed). A draft
 never makes a verdict: the row stays NOT EVALUATED and shows, beside it, the verdict it would have
 against the draft's value ("indicative"), so that a reader sees where the ship stands while the
 adopted text is unread.
@@ -40,7 +40,7 @@ class Standard:
     read_at : where it was read (page or repository file), or the override file.
     missing : why it is None (what was searched), else "".
     draft : for a missing value, the value a readable draft printed: a mapping with ``value``,
-        ``document``, ``read_at`` and ``quote`` (see the module's docstring), else None.
+        ``source``, ``read_at`` and ``quote`` (see the module's docstring), else None.
     """
 
     key: str
@@ -63,7 +63,7 @@ class Standard:
         """Citation of the draft's value ("" without a draft)."""
         if self.draft is None:
             return ""
-        return f"{self.draft['document']} [read at: {self.draft['read_at']}; printed: \"{self.draft['quote']}\"]"
+        return f"{self.draft['source']} [read at: {self.draft['read_at']}; printed: \"{self.draft['quote']}\"]"
 
 
 def _as_text(v) -> str:
@@ -101,17 +101,17 @@ def _entries(node, prefix: str, out: dict, where: Path) -> None:
 
 
 def _check_draft(node: dict, prefix: str, where: Path) -> None:
-    """A draft's value: only beside a null value, a number, with its document, where it was read and
+    """A draft's value: only beside a null value, a number, with its source, where it was read and
     the words printed."""
     d = node["draft"]
     field = f"{prefix}.draft"
     if node["value"] is not None:
         raise StabflowError(f"{where}: {field}: a draft is kept only where the adopted value is missing (null)")
-    if not isinstance(d, dict) or set(d) != {"value", "document", "read_at", "quote"}:
-        raise StabflowError(f"{where}: {field}: give value, document, read_at and quote, nothing else")
+    if not isinstance(d, dict) or set(d) != {"value", "source", "read_at", "quote"}:
+        raise StabflowError(f"{where}: {field}: give value, source, read_at and quote, nothing else")
     if not isinstance(d["value"], (int, float)) or isinstance(d["value"], bool):
         raise StabflowError(f"{where}: {field}.value: {d['value']!r} is not a number")
-    for k in ("document", "read_at", "quote"):
+    for k in ("source", "read_at", "quote"):
         if not str(d[k]).strip():
             raise StabflowError(f"{where}: {field}.{k}: empty")
 

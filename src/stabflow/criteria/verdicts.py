@@ -40,7 +40,6 @@ class Row:
         the adopted one where only another standard the row needs is drafted.
     draft_source : the drafts' citations.
     blockers : the missing items no draft covers (an indicative verdict needs none).
-    draft_limit_is_drafted : whether ``draft_limit`` is a draft's value (else the adopted one).
     """
 
     criterion: str
@@ -55,7 +54,6 @@ class Row:
     draft_limit: float | None = None
     draft_source: str = ""
     blockers: list[str] = field(default_factory=list)
-    draft_limit_is_drafted: bool = True
 
     def _meets(self, limit: float) -> bool:
         # a value within round-off (ROUND_OFF relative) of its limit meets it: a wall-sided hull's
@@ -89,7 +87,8 @@ class Row:
             why.append("no standard value")
         text = "missing: " + "; ".join(why) + (f". {self.note}" if self.note else "")
         if self.draft_verdict:
-            which = ("the draft's limit" if self.draft_limit_is_drafted else
+            # without an adopted limit the indicative one is the draft's; with one, another standard was drafted
+            which = ("the draft's limit" if self.limit is None else
                      "the limit, with the drafts' values of the other missing standards,")
             text += f". Indicative, against {which} {self.draft_limit:g} (not the adopted text): {self.draft_verdict}"
         return text
@@ -112,8 +111,7 @@ def against(criterion: str, level: str, value: float, unit: str, std: Standard, 
     sources = [s.cite_draft() for s in [std, *(drafted or [])] if not s.available and s.draft is not None]
     return Row(criterion, level, float(value), unit, limit, sense, std.cite(), miss, note,
                draft_limit=draft_limit if draft_limit is not None else (limit if sources else None),
-               draft_source="; ".join(sources), blockers=[m for m in miss if m not in covered],
-               draft_limit_is_drafted=draft_limit is not None)
+               draft_source="; ".join(sources), blockers=[m for m in miss if m not in covered])
 
 
 def rows_dataset(rows: list[Row], ship: str) -> xr.Dataset:
