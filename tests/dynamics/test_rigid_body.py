@@ -38,7 +38,13 @@ def free_roll(sec, st, co, rho, phi0_deg, duration, dt, free=THREE_DOF):
 
 @pytest.fixture(scope="module", params=["barge", "dtmb5415"])
 def ship(request):
-    return ship_model(request.param)
+    s, sec, st, co = ship_model(request.param)
+    if request.param == "dtmb5415":
+        # the measured case below: DTMB 5415 with the schema's default kxx 0.40 B_wl (its ship file
+        # has the published 7.363 m since 2026-12-07; the free roll's vertex crossings, which set the
+        # observed order, move with the inertia: 1.6e-6 / 1.3e-7 / 2.9e-8, order 3.6, 2.2 there)
+        co = dataclasses.replace(co, i44=co.mass * (0.40 * float(st["bwl"])) ** 2)
+    return s, sec, st, co
 
 
 def energy_drifts(s, sec, st, co, phi0_deg, steps, duration=20.0):

@@ -1,12 +1,13 @@
 """Validation rows for the 3-DOF time-domain model (:mod:`stabflow.dynamics`).
 
-:func:`dynamics_checks` returns the 34 rows below for every ship: PASS/FAIL, SKIPPED with the
+:func:`dynamics_checks` returns the 35 rows below for every ship: PASS/FAIL, SKIPPED with the
 reason where a row does not apply (no hull mesh for the pressure reference, a mesh too costly to
 integrate over a record, topsides the mesh does not carry), FAIL with the reason where its
 computation raised or gave a non-finite value. Deviations are ``100 (time domain / reference - 1)``
 [%]. The time-domain runs use the ship's own stations and its coefficients from the ``dynamics``
 config (:func:`stabflow.dynamics.model.config_coefficients`, also for ``hydro: capytaine`` and
-``roll_damping: ikeda`` ships: these rows check the equations, not the damping values).
+``roll_damping: ikeda`` ships: these rows check the equations, not the damping values; the last row,
+the natural roll period against a published one, takes Capytaine's added inertia as the pipeline does).
 "Measured" below: barge, wigley, dtmb5415 (and its flare/tumblehome variants), dtc.
 
 Roll decay (2 rows, independent; tolerance 0.1 %)
@@ -171,6 +172,13 @@ Ikeda roll damping (2 rows, independent; band 0.65-1.35)
     Maekawa & Ikeda 2009) at 10 deg and Fn 0 and 0.2, at the natural roll frequency of the
     config coefficients (:func:`ikeda_vs_simplified`). SKIPPED for the other ships.
 
+Natural roll period (1 row, independent, published data; tolerance 5 %)
+    The undamped period 2 pi sqrt((I44 + A44) / C44) of the ship as the pipeline models it
+    (:func:`natural_roll_period`: Capytaine's A44 at that frequency, sway held as in the 3-DOF
+    model) against a published model test at the same loading (``PUBLISHED_ROLL_PERIOD``): DTMB
+    5415 against Araki, Ohashi & Hirata (ISSW 2014, Table 1), 1.54 s at 1:46.6, 10.51 s at full
+    scale. SKIPPED for the ships without one.
+
 The pieces (:func:`roll_decay`, :func:`calm_rest`, :func:`pressure_mesh`,
 :func:`volume_vs_pressure`, :func:`dphi_dzdt_vs_pressure`, :func:`roll_excitation_with_decay`,
 :func:`hybrid_excitation`,
@@ -181,6 +189,7 @@ The pieces (:func:`roll_decay`, :func:`calm_rest`, :func:`pressure_mesh`,
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -669,6 +678,60 @@ def ikeda_vs_simplified(ship: Ship, sec: Sections, st: xr.Dataset, co: Coefficie
     return {"ratio": np.array(ratios), "out_of_range": out}
 
 
+#: published natural roll periods at full scale [s], each with its source: Araki, Ohashi & Hirata,
+#: "An analysis of bilge keel effects using RANS with overset grids method", Proc. 14th International
+#: Ship Stability Workshop, Kuala Lumpur 2014, Table 1 (model 1:46.6, the conditions of IIHR's roll
+#: decay tests, "same as the experimental conditions"): "Natural roll period: T phi [s] 1.54", draft
+#: 0.132 m, "Vertical position of center of gravity from waterline: VCG [m] 0.030", GM 0.043 m,
+#: "k44=0.39B 0.158", bilge keels lBK/LPP 0.313, bBK/B 0.048; read at
+#: helenedartoisTNAH-M2/ShipStabResearchApp@f479b9ae: app/static/PDF_STAB_ISSW/ISSW_2014_s07-p5.pdf,
+#: p. 217. Froude scaling: T_full = T_model sqrt(46.6).
+PUBLISHED_ROLL_PERIOD = {
+    "dtmb5415": (1.54 * math.sqrt(46.6),
+                 "Araki, Ohashi & Hirata, ISSW 2014, Table 1: model test 1:46.6, T_phi 1.54 s Froude-scaled (10.51 s); "
+                 "T 6.15 m, VCG 1.40 m above the waterline, GM 2.00 m (0.043 m), k44 0.158 m (7.36 m)"),
+}
+#: tolerance of the natural roll period against a published one [%] (stabflow's choice: the
+#: undamped linear period against a decay test's, whose damping shortens the period by
+#: sqrt(1 - zeta^2), 0.1-0.5 % at zeta 0.05-0.1, and whose model's GM is printed to two digits, +-1.2 %)
+TOL_PUBLISHED_PERIOD = 5.0
+
+
+def natural_roll_period(ship: Ship, sec: Sections, st: xr.Dataset) -> float:
+    """Undamped natural roll period [s] of the ship as the pipeline models it: 2 pi sqrt((I44 +
+    A44) / C44) with Capytaine's A44 at that frequency (fixed point, the ``hydro`` step's
+    :func:`stabflow.dynamics.hydro.natural_coefficients`) for ``dynamics.hydro: capytaine`` ships,
+    the config's A44 otherwise; C44 the kernel's restoring at the calm-water equilibrium."""
+    co = config_coefficients(ship, sec, st)
+    if ship.data["dynamics"].get("hydro") != "capytaine":
+        return co.natural_period("roll")
+    from stabflow.dynamics.hydro import bem_mesh, immersed_body, natural_coefficients
+
+    h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
+    body = immersed_body(bem_mesh(ship), h0, th0, float(st["lcg"]), float(st["kg"]))
+    w, _, _ = natural_coefficients(body, [co.mass, co.i44, co.i55], [co.c33, co.c44, co.c55], ship.rho)["roll"]
+    return float(2 * np.pi / w)
+
+
+#: name of the natural roll period's row
+PERIOD_CHECK = "natural roll period: undamped 2 pi sqrt((I44 + A44) / C44) vs published model test"
+
+
+def published_period_check(ship: Ship, st: xr.Dataset, sections: Callable[[], Sections]) -> Check:
+    """The row of the ship's natural roll period (:func:`natural_roll_period`) against
+    ``PUBLISHED_ROLL_PERIOD``: 100 (T / T_published - 1) [%], tolerance ``TOL_PUBLISHED_PERIOD``;
+    SKIPPED for a ship without a published period. ``sections`` gives the ship's sections."""
+    pub = PUBLISHED_ROLL_PERIOD.get(ship.name)
+
+    def period():
+        if pub is None:
+            raise NotApplicable("no published natural roll period for this ship (PUBLISHED_ROLL_PERIOD)")
+        return 100 * (natural_roll_period(ship, sections(), st) / pub[0] - 1)
+
+    return _row(period, PERIOD_CHECK, "%", pub[1] if pub else "a published natural roll period of the ship at its loading",
+                "independent", tolerance=TOL_PUBLISHED_PERIOD)
+
+
 def settle_time(co: Coefficients, decay_times: float = 12.0) -> float:
     """``decay_times`` times the slowest free-decay time constant 2 (m + a) / b of the three modes
     [s]: transients from rest have fallen by e^-12 (6e-6) by then.
@@ -847,7 +910,7 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
     Returns
     -------
     list of Check
-        The 34 rows described in the module docstring, in that order, every one present: PASS or
+        The 35 rows described in the module docstring, in that order, every one present: PASS or
         FAIL, SKIPPED with the reason where a check does not apply, FAIL with the reason where its
         computation raised or gave a non-finite value. Never raises for a failing computation.
     """
@@ -1157,4 +1220,6 @@ def dynamics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]
         if row.status != "SKIPPED" and np.isfinite(row.value) and ikeda()["out_of_range"]:
             row.reference += f"; the hull lies outside the regression's range ({ikeda()['out_of_range']})"
         rows.append(row)
+    # --- the natural roll period against a published model test (published data -> independent)
+    rows.append(published_period_check(ship, st, lambda: lazy.get("geometry", geometry)[0]))
     return rows

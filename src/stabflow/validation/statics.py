@@ -8,7 +8,7 @@
 | Wigley volume and BM | analytic 4/9 LBT, (2/3)(B/2)^3 L 16/35 / V | independent |
 | mesh GZ 0-180 deg, free trim | divergence-theorem integration over the STL (no sections) | independent |
 | mesh GZ 0-60 deg | navaltoolbox (peer library) | independent |
-| volume, GMt | published particulars (PUBLISHED, with source) | independent |
+| volume, displacement, GMt, KMt | published particulars (PUBLISHED, with source) | independent |
 | stations doubled | the same method at twice the stations | consistency |
 """
 
@@ -25,10 +25,25 @@ from stabflow.geometry.mesh import ship_mesh
 from stabflow.validation import Check, run_check
 from stabflow.validation.references import exact_box_gz, mesh_gz
 
-#: published particulars used as references, with their source
+#: published particulars used as references: (statics quantity, published value, tolerance, unit, source)
+#: per ship; "volume" [m^3], "mass" [t], "gm" and "km" [m]. The hull file's README restates SIMMAN 2008's
+#: volume and GMt; Ariffin, Mansor & Laurens, "Experimental study on the wind heeling arm of the
+#: weather criterion", Proc. 15th International Ship Stability Workshop, Stockholm 2016, Table 2
+#: ("5415 shape": "Draft, (m) 6.15", "Displacement, (tonnes) 8,635", "VCG, (m) 7.555",
+#: "KM, (m) 9.493", "GM, (m) 1.938"), read at helenedartoisTNAH-M2/ShipStabResearchApp@f479b9ae:
+#: app/static/PDF_STAB_ISSW/ISSW_2016_s08-p3.pdf, p. 247, give the same loading's displacement, KM and GM.
+_ARIFFIN = "Ariffin, Mansor & Laurens, ISSW 2016, Table 2 (T = 6.15 m, VCG = 7.555 m)"
 PUBLISHED = {
-    "dtmb5415": {"volume": (8424.0, "SIMMAN 2008, T = 6.15 m"), "gm": (1.95, "SIMMAN 2008, KG = 7.555 m")},
+    "dtmb5415": [("volume", 8424.0, 1.0, "%", "SIMMAN 2008, T = 6.15 m (resources/hulls/README.md)"),
+                 ("gm", 1.95, 0.05, "m", "SIMMAN 2008, KG = 7.555 m (resources/hulls/README.md)"),
+                 ("mass", 8635.0, 1.0, "%", _ARIFFIN),
+                 ("km", 9.493, 0.05, "m", _ARIFFIN),
+                 ("gm", 1.938, 0.05, "m", _ARIFFIN)],
 }
+#: row names of the published quantities
+_PUBLISHED_NAMES = {"volume": "displaced volume", "mass": "displacement", "gm": "GMt", "km": "KMt"}
+_PUBLISHED_UNITS = {"volume": "m3", "mass": "t", "gm": "m", "km": "m"}
+
 
 #: largest heel [degree] of the navaltoolbox comparison: navaltoolbox departs from the exact mesh
 #: integration beyond about 65-75 deg on the shipped hulls (deck deeply immersed)
@@ -101,12 +116,11 @@ def statics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]:
                "the topside variant changes the hull above the waterline; the mesh file is the original hull")
         checks.append(Check.not_applicable(mesh_name, why, "%", "divergence-theorem integration over the STL"))
         checks.append(Check.not_applicable(nt_name, why, "%", "navaltoolbox (independent code)"))
-    if ship.name in PUBLISHED:
-        pub = PUBLISHED[ship.name]
-        v, src = pub["volume"]
-        checks.append(Check("displaced volume vs published", 100 * (vol - v) / v, 1.0, "%", src))
-        g, src = pub["gm"]
-        checks.append(Check("GMt vs published", float(st["gm"]) - g, 0.05, "m", src))
+    for quantity, ref, tol, unit, src in PUBLISHED.get(ship.name, []):
+        value = {"volume": vol, "mass": float(st["mass"]) / 1000.0, "gm": float(st["gm"]), "km": float(st["gm"]) + kg}[quantity]
+        dev = 100 * (value - ref) / ref if unit == "%" else value - ref
+        checks.append(Check(f"{_PUBLISHED_NAMES[quantity]} vs published {ref:g} {_PUBLISHED_UNITS[quantity]}", dev, tol, unit,
+                            src))
     # station convergence: doubling the stations changes GZ by less than 0.5 % of GZmax
     ship2 = ship.modified(stations=2 * int(h["stations"]))
     st2 = compute_statics(ship2, build_hull(ship2))
