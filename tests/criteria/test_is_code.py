@@ -157,12 +157,20 @@ def test_level2_sea_state_rows(barge):
     computed and NOT EVALUATED naming their missing standards; their quantities are in the results
     (the barge's wind heel is the weather criterion's phi0; its crew location the deck amidships)."""
     ds = barge[3]
-    for name, key in (("pure loss of stability: max(CR1, CR2)", "RPL0"), ("parametric rolling: C1", "RPR0"),
+    for name, key in (("pure loss of stability: max(CR1, CR2)", "RPL0"), ("parametric rolling: C1 (GM variation", "RPR0"),
                       ("parametric rolling: C2", "roll_angle_threshold_deg"),
                       ("dead ship condition: weather", "dead_ship.level_1"), ("dead ship condition: long-term", "RDS0"),
                       ("excessive acceleration: lateral", "REA1"), ("excessive acceleration: long-term", "REA2")):
         r = row(ds, name)
         assert str(r.verdict.values) == "NOT EVALUATED" and key in str(r.verdict_reason.values), name
+    # the 2013 draft's first check over its 16 regular waves: the wall-sided box's GM hardly varies on
+    # them (dGM/GM <= 0.01 against R_PR), so C1 = 0; with this file's service speed (10 kn) and both
+    # missing items (the cases, RPR0) drafted: indicative PASS against the draft's 0.06
+    r = row(ds, "parametric rolling: C1 over the 2013 draft's regular waves")
+    assert float(r.criterion_value) == 0.0 and str(r.verdict.values) == "NOT EVALUATED"
+    assert str(r.verdict_draft.values) == "PASS" and float(r.criterion_draft_limit) == 0.06
+    assert "Table 3-A-1" in str(r.criterion_draft_source.values) and float(ds.attrs["c1_service_speed"]) == pytest.approx(10 * 0.514444, rel=1e-5)
+    assert ds.sizes["c1_case"] == 16 and float(ds.c1_gm_ratio.max()) < 0.01 and float(ds.c1) == 0.0
     assert float(ds.ds_heel_wind) == pytest.approx(float(ds.wc_phi0))
     assert float(ds.ea_crew_height) == pytest.approx(D)
     assert float(ds.ea_height_above_g) == pytest.approx(D - KG)

@@ -1,5 +1,6 @@
 """The criteria data: every value sourced, null values explained, overrides validated."""
 
+import numpy as np
 import pytest
 
 from stabflow import StabflowError
@@ -96,14 +97,24 @@ def test_drafts_are_checked(tmp_path):
     std = Standards()
     drafts = {k: e["draft"] for k, e in std.entries.items() if "draft" in e}
     fm = "sgisc.failure_modes."
+    wc = "sgisc.wave_data.pure_loss_and_parametric_roll_level2_wave_cases."
+    table = drafts.pop(wc + "cases")
     assert {k: d["value"] for k, d in drafts.items()} == {
         fm + "pure_loss_of_stability.level_2.RPL0": 0.06, fm + "pure_loss_of_stability.level_2.RPL2_heel_angle_deg": 25,
         fm + "parametric_rolling.level_2.RPR0": 0.06, fm + "parametric_rolling.level_2.roll_angle_threshold_deg": 25,
         fm + "surf_riding_broaching.level_1.length_limit_m": 200, fm + "surf_riding_broaching.level_1.froude_number_limit": 0.3,
-        fm + "surf_riding_broaching.level_2.R_SR": 0.005}
+        fm + "surf_riding_broaching.level_2.R_SR": 0.005, wc + "count": 16}
     for k, d in drafts.items():
         assert std.get(k).value is None and std.get(k).draft["value"] == d["value"], k
         assert "PDF_STAB_ISSW" in d["read_at"] and f"{d['value']:g}" in d["quote"], k
+    # the 2013 draft's Table 3-A-1: 16 waves (W, lambda, H), its first and last rows quoted; the
+    # weights are the Rec. 34 table's column sums over Hs / 100,000 (Tz 3.5 ... 18.5)
+    assert table["columns"] == ["W", "lambda_m", "H_m"] and len(table["value"]) == 16
+    assert table["value"][0] == [1.3e-05, 22.574, 0.35] and table["value"][-1] == [7e-06, 630.684, 5.95]
+    assert "1 1.300E-05 22.574 0.35" in table["quote"] and "16 7.000E-06 630.684 5.95" in table["quote"]
+    rec = std.raw["iacs_rec34_scatter"]
+    cols = np.sum([r["counts"] for r in rec["hs_rows"]], axis=0)[2:] / 1e5
+    np.testing.assert_allclose([r[0] for r in table["value"]], cols, rtol=5e-3, atol=1e-6)
     import yaml
 
     p = _copy_data(tmp_path)
@@ -111,7 +122,11 @@ def test_drafts_are_checked(tmp_path):
     entry = data["failure_modes"]["surf_riding_broaching"]["level_2"]["R_SR"]
     for change, match in (({"value": 0.01, "read_at": "x"}, "R_SR.draft: a draft is kept only where the adopted value is missing"),
                           ({"draft": {**entry["draft"], "value": "abc"}}, "R_SR.draft.value"),
-                          ({"draft": {k: v for k, v in entry["draft"].items() if k != "quote"}}, "R_SR.draft: give value")):
+                          ({"draft": {k: v for k, v in entry["draft"].items() if k != "quote"}}, "R_SR.draft: give value"),
+                          ({"draft": {**entry["draft"], "columns": ["a"]}}, "R_SR.draft.columns: only a table"),
+                          ({"draft": {**entry["draft"], "value": [[1.0, 2.0]], "columns": ["a"]}}, "R_SR.draft.value: a table"),
+                          ({"draft": {**entry["draft"], "value": [[1.0, "x"]], "columns": ["a", "b"]}}, "R_SR.draft.value: a table"),
+                          ({"draft": {**entry["draft"], "value": [[1.0]]}}, "R_SR.draft.value: a table")):
         data["failure_modes"]["surf_riding_broaching"]["level_2"]["R_SR"] = {**entry, **change}
         p.write_text(yaml.safe_dump(data))
         with pytest.raises(StabflowError, match=match):

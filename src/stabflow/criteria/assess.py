@@ -106,6 +106,12 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     q1.update(midship_coefficient=cm, depth_midship=depth, freeboard_volume_ratio=reserve, rpr=r_pr[0])
     pr = sgisc.parametric_roll_cases(ship, cfg["parametric"], stab.lwl, hydro)
     rows.append(sgisc.parametric_level2_row(pr, std))
+    # the first level-2 check (C1) over the draft's regular waves; T_phi from the 1-DOF model's inertia
+    cases, cases_src = sgisc.c1_cases(std)
+    t_phi = 2 * math.pi * math.sqrt(float(pr["pr_inertia"].values[0]) / (float(pr.attrs["pr_weight"]) * stab.gm0))
+    c1 = sgisc.parametric_c1(sec, V, float(st["lcg"]), stab.kg, stab.gm0, cases, r_pr[0], t_phi,
+                             None if speed is None else speed * KNOT)
+    rows.append(sgisc.parametric_c1_row(c1, std, cases_src))
     sr = sgisc.surf_riding_thresholds(ship, cfg["surf_riding"], stab.lwl, radiation)
     rows.append(sgisc.surf_riding_level2_row(sr, fn, std))
     from stabflow.config import _fill_defaults, schema
@@ -115,9 +121,10 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
                                         failure_angle(std, stab.vanishing, stab.flooding), pr, hydro)
     rows += srows
     ds = rows_dataset(rows, ship.name)
-    ds = ds.merge(gw).merge(pr).merge(seas)
+    ds = ds.merge(gw).merge(pr).merge(seas).merge(c1)
     ds.attrs.update(seas.attrs)
     ds.attrs.update(pr.attrs)
+    ds.attrs.update(c1.attrs)
     ds = ds.merge(sr)
     ds.attrs.update(sr.attrs)
     ds["gz"] = ("heel", stab.gz)

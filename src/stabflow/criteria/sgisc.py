@@ -300,6 +300,95 @@ def parametric_level2_row(pr: xr.Dataset, std: Standards) -> Row:
                         f"gives {float(pr['pr_roll_3dof'].max()):.1f} deg (results pr_roll_3dof)")
 
 
+#: crest positions per wave length for GM(H_i, lambda_i) of parametric rolling's first level-2 check
+#: (stabflow's reading: the 2013 draft's "series of waves" names none; its level 1, 2.11.2.2, puts the
+#: crest at the LCG and at each 0.1 L forward and aft, ten positions a wave length)
+C1_CRESTS = 10
+#: the level-2 wave cases' entry (the adopted circular's, null; the 2013 draft's under ``draft``)
+C1_CASES = "sgisc.wave_data.pure_loss_and_parametric_roll_level2_wave_cases.cases"
+
+
+def c1_cases(std: Standards) -> tuple[np.ndarray, str]:
+    """The regular waves of parametric rolling's first level-2 check: (n, 3) rows (W_i [-],
+    lambda_i [m], H_i [m]) and where they come from: the adopted (or overridden) table, else the 2013
+    draft's Table 3-A-1 (``sgisc.yaml``). StabflowError when neither is there."""
+    from stabflow import StabflowError
+
+    wc = std.get(C1_CASES)
+    if wc.available:
+        return np.asarray(wc.value, float), wc.cite()
+    if wc.draft is None:
+        raise StabflowError(f"criteria data: '{C1_CASES}' has neither a value nor a draft")
+    return np.asarray(wc.draft["value"], float), wc.cite_draft()
+
+
+def parametric_c1(sec: Sections, volume: float, lcg: float, kg: float, gm0: float, cases: np.ndarray, r_pr: float,
+                  t_phi: float, v_d: float | None) -> xr.Dataset:
+    """Parametric rolling, level 2, first check, as the 2013 draft states it (SLF 55/WP.3 Annex 1,
+    2.11.3.2, read in Umeda, ISSW 2013, pp. 11-13): C1 = sum_i W_i C_i over the regular waves
+    (W_i, lambda_i, H_i) of ``cases``, C_i = 0 where either requirement holds, 1 where neither:
+
+    * 2.11.3.2.1, the GM variation: GM(H_i, lambda_i) > 0 and dGM(H_i, lambda_i) / GM(H_i, lambda_i)
+      < R_PR (``r_pr``, level 1's standard), GM the mean and dGM half the range of the metacentric
+      height of the ship balanced in sinkage and trim on the wave over ``C1_CRESTS`` crest positions;
+    * 2.11.3.2.2, the speed: V_PR,i > V_D, V_PR,i = |2 lambda_i / T_phi sqrt(GM(H_i, lambda_i) / GM)
+      - sqrt(g lambda_i / (2 pi))| where GM(H_i, lambda_i) > 0 (the speed of principal parametric
+      resonance in head or following waves), T_phi the calm-water natural roll period [s] (``t_phi``),
+      GM the calm-water metacentric height (``gm0``) [m], V_D the service speed [m/s] (``v_d``; None:
+      the speed requirement is not evaluated and C1 is an upper bound).
+
+    Returns a Dataset along ``c1_case``: ``c1_weight``, ``c1_wave_length``, ``c1_wave_height``,
+    ``c1_gm_wave`` (mean) and ``c1_delta_gm`` [m], ``c1_gm_ratio`` (dGM / GM), ``c1_speed_resonance``
+    V_PR [m/s] (NaN where GM(H, lambda) <= 0), ``c1_fails`` C_i, and the scalar ``c1``.
+    """
+    from stabflow.constants import G
+
+    W, lam, H = (np.asarray(cases, float)[:, j] for j in range(3))
+    gm = np.full((len(W), C1_CRESTS), np.nan)
+    for i in range(len(W)):
+        guess = (None, None)
+        for j, f in enumerate(np.arange(C1_CRESTS) / C1_CRESTS - 0.5):
+            gm[i, j], _, _, guess = wave_gm(sec, volume, lcg, kg, 0.5 * H[i], 2 * math.pi / lam[i], lcg + f * lam[i], guess)
+    mean = gm.mean(axis=1)
+    delta = 0.5 * (gm.max(axis=1) - gm.min(axis=1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(mean > 0, delta / mean, np.nan)
+        vpr = np.where(mean > 0, np.abs(2 * lam / t_phi * np.sqrt(mean / gm0) - np.sqrt(G * lam / (2 * math.pi))), np.nan)
+    gm_ok = (mean > 0) & (ratio < r_pr)
+    speed_ok = (vpr > v_d) if v_d is not None else np.zeros(len(W), bool)
+    fails = np.where(np.isfinite(mean), (~(gm_ok | speed_ok)).astype(float), np.nan)
+    ds = xr.Dataset(
+        {"c1_weight": ("c1_case", W), "c1_wave_length": ("c1_case", lam), "c1_wave_height": ("c1_case", H),
+         "c1_gm_wave": ("c1_case", mean), "c1_delta_gm": ("c1_case", delta), "c1_gm_ratio": ("c1_case", ratio),
+         "c1_speed_resonance": ("c1_case", vpr), "c1_fails": ("c1_case", fails)},
+        coords={"c1_case": np.arange(1, len(W) + 1)},
+    )
+    ds["c1"] = float(np.sum(W * fails))
+    ds.attrs.update(c1_r_pr=float(r_pr), c1_roll_period=float(t_phi), c1_gm=float(gm0),
+                    c1_service_speed=np.nan if v_d is None else float(v_d), c1_crest_positions=C1_CRESTS)
+    return ds
+
+
+def parametric_c1_row(c1: xr.Dataset, std: Standards, cases_source: str) -> Row:
+    """Parametric rolling, level 2, first check: C1 against RPR0 (C1 <= RPR0: not vulnerable; else the
+    second check C2 decides, which stabflow does not compute). NOT EVALUATED while RPR0 and the wave
+    cases are the drafts'; without a service speed C1 is an upper bound and no indicative verdict."""
+    wc = std.get(C1_CASES)
+    miss, drafted = [], []
+    if not wc.available:
+        miss.append(f"{wc.key} ({wc.source})")
+        drafted.append(wc)
+    if not np.isfinite(c1.attrs["c1_service_speed"]):
+        miss.append("the ship's service speed (criteria.service_speed_kn): C1 without the speed requirement, an upper bound")
+    n = int(c1.sizes["c1_case"])
+    return against("parametric rolling: C1 over the 2013 draft's regular waves (GM and speed requirements)",
+                   "SGISC parametric rolling, level 2", float(c1["c1"]), "-", std.get(f"{SG}.parametric_rolling.level_2.RPR0"),
+                   "<=", missing=miss, drafted=drafted,
+                   note=f"{n} waves ({cases_source}); R_PR {c1.attrs['c1_r_pr']:.3f}, T_phi {c1.attrs['c1_roll_period']:.2f} s, "
+                        f"{int(np.nansum(c1['c1_fails']))} of {n} fail both; GM on the wave over {C1_CRESTS} crest positions; "
+                        "the second check C2 is not computed (its effective wave height is not defined in the draft read)")
+
+
 def surf_riding_thresholds(ship, cfg: dict, L: float, radiation: xr.Dataset | None = None) -> xr.Dataset:
     """Surf-riding level-2 physics: the critical Froude number of Melnikov's method on the surge
     equation (:func:`stabflow.dynamics.surf_riding.melnikov_threshold`, the ship's own resistance

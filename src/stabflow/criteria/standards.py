@@ -39,8 +39,9 @@ class Standard:
     source : the document and paragraph/table it belongs to.
     read_at : where it was read (page or repository file), or the override file.
     missing : why it is None (what was searched), else "".
-    draft : for a missing value, the value a readable draft printed: a mapping with ``value``,
-        ``source``, ``read_at`` and ``quote`` (see the module's docstring), else None.
+    draft : for a missing value, the value a readable draft printed: a mapping with ``value`` (a
+        number, or a table: rows with ``columns``), ``source``, ``read_at`` and ``quote`` (see the
+        module's docstring), else None.
     """
 
     key: str
@@ -101,16 +102,31 @@ def _entries(node, prefix: str, out: dict, where: Path) -> None:
 
 
 def _check_draft(node: dict, prefix: str, where: Path) -> None:
-    """A draft's value: only beside a null value, a number, with its source, where it was read and
-    the words printed."""
+    """A draft's value: only beside a null value, a number (or a table: rows of numbers, with its
+    ``columns``), with its source, where it was read and the words printed."""
     d = node["draft"]
     field = f"{prefix}.draft"
     if node["value"] is not None:
         raise StabflowError(f"{where}: {field}: a draft is kept only where the adopted value is missing (null)")
-    if not isinstance(d, dict) or set(d) != {"value", "source", "read_at", "quote"}:
-        raise StabflowError(f"{where}: {field}: give value, source, read_at and quote, nothing else")
-    if not isinstance(d["value"], (int, float)) or isinstance(d["value"], bool):
-        raise StabflowError(f"{where}: {field}.value: {d['value']!r} is not a number")
+    keys = {"value", "source", "read_at", "quote"}
+    if not isinstance(d, dict) or not keys <= set(d) or set(d) - keys - {"columns"}:
+        raise StabflowError(f"{where}: {field}: give value, source, read_at and quote (and columns for a table), "
+                            "nothing else")
+
+    def number(v):
+        return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+    v = d["value"]
+    if isinstance(v, list):
+        cols = d.get("columns")
+        if not isinstance(cols, list) or not cols or not v or any(
+                not isinstance(r, list) or len(r) != len(cols) or not all(number(x) for x in r) for r in v):
+            raise StabflowError(f"{where}: {field}.value: a table's rows must each hold one number per column "
+                                f"({cols!r})")
+    elif not number(v):
+        raise StabflowError(f"{where}: {field}.value: {v!r} is not a number")
+    elif "columns" in d:
+        raise StabflowError(f"{where}: {field}.columns: only a table has columns")
     for k in ("source", "read_at", "quote"):
         if not str(d[k]).strip():
             raise StabflowError(f"{where}: {field}.{k}: empty")
