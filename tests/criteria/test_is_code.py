@@ -166,10 +166,11 @@ def test_level2_sea_state_rows(barge):
     # the 2013 draft's first check over its 16 regular waves: the wall-sided box's GM hardly varies on
     # them (dGM/GM <= 0.01 against R_PR), so C1 = 0; with this file's service speed (10 kn) and both
     # missing items (the cases, RPR0) drafted: indicative PASS against the draft's 0.06
-    r = row(ds, "parametric rolling: C1 over the 2013 draft's regular waves")
+    r = row(ds, "parametric rolling: C1 over the level-2 regular waves")
     assert float(r.criterion_value) == 0.0 and str(r.verdict.values) == "NOT EVALUATED"
     assert str(r.verdict_draft.values) == "PASS" and float(r.criterion_draft_limit) == 0.06
     assert "Table 3-A-1" in str(r.criterion_draft_source.values) and float(ds.attrs["c1_service_speed"]) == pytest.approx(10 * 0.514444, rel=1e-5)
+    assert ds.attrs["c1_speed_requirement"] == "evaluated" and ds.attrs["c1_no_equilibrium"] == "none"
     assert ds.sizes["c1_case"] == 16 and float(ds.c1_gm_ratio.max()) < 0.01 and float(ds.c1) == 0.0
     assert float(ds.ds_heel_wind) == pytest.approx(float(ds.wc_phi0))
     assert float(ds.ea_crew_height) == pytest.approx(D)

@@ -267,8 +267,58 @@ def test_parametric_c1_requirements(monkeypatch):
     np.testing.assert_allclose(c1["c1_speed_resonance"].values[[0, 1, 3]], vpr[[0, 1, 3]], rtol=1e-12)
     assert list(c1["c1_fails"].values) == [0.0, 1.0, 1.0, 0.0]
     assert float(c1["c1"]) == pytest.approx(0.2 + 0.3)
+    assert c1.attrs["c1_speed_requirement"] == "evaluated"
     no_speed = sgisc.parametric_c1(None, 1.0, 0.0, 0.0, gm0, cases, 0.3, t_phi, None)
     assert list(no_speed["c1_fails"].values) == [0.0, 1.0, 1.0, 1.0] and float(no_speed["c1"]) == pytest.approx(0.9)
+    assert no_speed.attrs["c1_speed_requirement"] == "not evaluated: no service speed (criteria.service_speed_kn)"
+    # a lolling ship (GM <= 0, NaN) or no roll period: the speed requirement is not evaluated either
+    for g, t, why in ((0.0, t_phi, "calm-water GM 0 m, not positive"), (np.nan, t_phi, "calm-water GM nan m, not positive"),
+                      (gm0, np.nan, "no finite calm-water roll period")):
+        d = sgisc.parametric_c1(None, 1.0, 0.0, 0.0, g, cases, 0.3, t, vd)
+        assert d.attrs["c1_speed_requirement"] == f"not evaluated: {why}" and float(d["c1"]) == pytest.approx(0.9)
+        assert np.isnan(d["c1_speed_resonance"].values).all()
+        r = sgisc.parametric_c1_row(d, Standards(), "test")
+        assert r.draft_verdict == "" and "the speed requirement" in r.reason
+    # no equilibrium on a wave (wave_gm raises): that case NaN, C1 NaN, the row names it
+    from stabflow import StabflowError
+
+    def no_eq(sec, volume, lcg, kg, amp, k, xc, guess):
+        if round(2 * math.pi / k, 6) == 70.0:
+            raise StabflowError("no equilibrium on the wave")
+        return fake(sec, volume, lcg, kg, amp, k, xc, guess)
+
+    monkeypatch.setattr(sgisc, "wave_gm", no_eq)
+    d = sgisc.parametric_c1(None, 1.0, 0.0, 0.0, gm0, cases, 0.3, t_phi, vd)
+    assert np.isnan(d["c1_gm_wave"].values[2]) and np.isnan(d["c1_fails"].values[2]) and np.isnan(float(d["c1"]))
+    assert d.attrs["c1_no_equilibrium"] == "3"
+    r = sgisc.parametric_c1_row(d, Standards(), "test")
+    assert r.verdict == "NOT EVALUATED" and r.draft_verdict == "" and "no equilibrium on wave case(s) 3" in r.reason
+
+
+def test_c1_cases_adopted_table_and_bad_values():
+    """An adopted (overridden) table is read in its entry's columns_expected order (case, W_i, H_i,
+    lambda_i) and returned as (W, lambda, H); a value that is not such a table is an error naming the entry."""
+    import dataclasses
+
+    from stabflow import StabflowError
+
+    std = Standards()
+    base = std.get(sgisc.C1_CASES)
+
+    class Fake:
+        def __init__(self, value):
+            self.s = dataclasses.replace(base, value=value, read_at="here", draft=None)
+
+        def get(self, key):
+            assert key == sgisc.C1_CASES
+            return self.s
+
+    cases, src = sgisc.c1_cases(Fake([[1, 0.4, 2.0, 100.0], [2, 0.6, 3.0, 150.0]]))
+    np.testing.assert_array_equal(cases, [[0.4, 100.0, 2.0], [0.6, 150.0, 3.0]])
+    assert "here" in src
+    for bad in (3, [[0.4, 100.0, 2.0]], [1, 2, 3, 4]):
+        with pytest.raises(StabflowError, match="must be a table of rows"):
+            sgisc.c1_cases(Fake(bad))
 
 
 def test_parametric_c1_row_and_draft_cases():
@@ -291,5 +341,6 @@ def xr_c1(value, speed):
 
     ds = xr.Dataset({"c1_fails": ("c1_case", np.zeros(16))}, coords={"c1_case": np.arange(1, 17)})
     ds["c1"] = value
-    ds.attrs.update(c1_r_pr=0.2, c1_roll_period=10.0, c1_service_speed=speed)
+    ds.attrs.update(c1_r_pr=0.2, c1_roll_period=10.0, c1_service_speed=speed, c1_no_equilibrium="none",
+                    c1_speed_requirement="evaluated" if np.isfinite(speed) else "not evaluated: no service speed")
     return ds

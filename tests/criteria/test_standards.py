@@ -114,7 +114,9 @@ def test_drafts_are_checked(tmp_path):
     assert "1 1.300E-05 22.574 0.35" in table["quote"] and "16 7.000E-06 630.684 5.95" in table["quote"]
     rec = std.raw["iacs_rec34_scatter"]
     cols = np.sum([r["counts"] for r in rec["hs_rows"]], axis=0)[2:] / 1e5
-    np.testing.assert_allclose([r[0] for r in table["value"]], cols, rtol=5e-3, atol=1e-6)
+    # to the table's four printed digits (largest 1.2e-4); W_12 = 2.473E-03 is the Tz 14.5 column with
+    # 0.3 at Hs 15.5 (247.3; 247.1 with the 0.1 of the Snoopy array): a fifth copy of that cell
+    np.testing.assert_allclose([r[0] for r in table["value"]], cols, rtol=2e-4, atol=0)
     import yaml
 
     p = _copy_data(tmp_path)

@@ -108,7 +108,8 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
     rows.append(sgisc.parametric_level2_row(pr, std))
     # the first level-2 check (C1) over the draft's regular waves; T_phi from the 1-DOF model's inertia
     cases, cases_src = sgisc.c1_cases(std)
-    t_phi = 2 * math.pi * math.sqrt(float(pr["pr_inertia"].values[0]) / (float(pr.attrs["pr_weight"]) * stab.gm0))
+    t_phi = (2 * math.pi * math.sqrt(float(pr["pr_inertia"].values[0]) / (float(pr.attrs["pr_weight"]) * stab.gm0))
+             if stab.gm0 > 0 else math.nan)
     c1 = sgisc.parametric_c1(sec, V, float(st["lcg"]), stab.kg, stab.gm0, cases, r_pr[0], t_phi,
                              None if speed is None else speed * KNOT)
     rows.append(sgisc.parametric_c1_row(c1, std, cases_src))

@@ -310,13 +310,20 @@ C1_CASES = "sgisc.wave_data.pure_loss_and_parametric_roll_level2_wave_cases.case
 
 def c1_cases(std: Standards) -> tuple[np.ndarray, str]:
     """The regular waves of parametric rolling's first level-2 check: (n, 3) rows (W_i [-],
-    lambda_i [m], H_i [m]) and where they come from: the adopted (or overridden) table, else the 2013
-    draft's Table 3-A-1 (``sgisc.yaml``). StabflowError when neither is there."""
+    lambda_i [m], H_i [m]) and where they come from: the adopted (or overridden) table, whose rows
+    are laid out as the entry's ``columns_expected`` (case number, W_i, H_i, lambda_i), else the 2013
+    draft's Table 3-A-1 (``sgisc.yaml``, rows W_i, lambda_i, H_i). StabflowError naming the entry
+    when neither is there or the adopted value is not such a table."""
     from stabflow import StabflowError
 
     wc = std.get(C1_CASES)
     if wc.available:
-        return np.asarray(wc.value, float), wc.cite()
+        t = np.asarray(wc.value, dtype=object)
+        if t.ndim != 2 or t.shape[1] != 4:
+            raise StabflowError(f"criteria data: '{C1_CASES}': the value must be a table of rows (case number, W_i, "
+                                f"H_i [m], lambda_i [m]), not {wc.value!r}")
+        t = t.astype(float)
+        return t[:, [1, 3, 2]], wc.cite()
     if wc.draft is None:
         raise StabflowError(f"criteria data: '{C1_CASES}' has neither a value nor a draft")
     return np.asarray(wc.draft["value"], float), wc.cite_draft()
@@ -334,13 +341,18 @@ def parametric_c1(sec: Sections, volume: float, lcg: float, kg: float, gm0: floa
     * 2.11.3.2.2, the speed: V_PR,i > V_D, V_PR,i = |2 lambda_i / T_phi sqrt(GM(H_i, lambda_i) / GM)
       - sqrt(g lambda_i / (2 pi))| where GM(H_i, lambda_i) > 0 (the speed of principal parametric
       resonance in head or following waves), T_phi the calm-water natural roll period [s] (``t_phi``),
-      GM the calm-water metacentric height (``gm0``) [m], V_D the service speed [m/s] (``v_d``; None:
-      the speed requirement is not evaluated and C1 is an upper bound).
+      GM the calm-water metacentric height (``gm0``) [m], V_D the service speed [m/s] (``v_d``).
+
+    The speed requirement is not evaluated (C1 then counts the GM requirement alone, an upper bound;
+    attribute ``c1_speed_requirement`` says why) without a service speed, or where GM <= 0 or T_phi is
+    not finite. A wave on which the ship finds no equilibrium at some crest position leaves that case's
+    GM NaN and C1 NaN (``c1_no_equilibrium`` names the cases).
 
     Returns a Dataset along ``c1_case``: ``c1_weight``, ``c1_wave_length``, ``c1_wave_height``,
     ``c1_gm_wave`` (mean) and ``c1_delta_gm`` [m], ``c1_gm_ratio`` (dGM / GM), ``c1_speed_resonance``
-    V_PR [m/s] (NaN where GM(H, lambda) <= 0), ``c1_fails`` C_i, and the scalar ``c1``.
+    V_PR [m/s] (NaN where GM(H, lambda) <= 0 or not evaluated), ``c1_fails`` C_i, and the scalar ``c1``.
     """
+    from stabflow import StabflowError
     from stabflow.constants import G
 
     W, lam, H = (np.asarray(cases, float)[:, j] for j in range(3))
@@ -348,15 +360,24 @@ def parametric_c1(sec: Sections, volume: float, lcg: float, kg: float, gm0: floa
     for i in range(len(W)):
         guess = (None, None)
         for j, f in enumerate(np.arange(C1_CRESTS) / C1_CRESTS - 0.5):
-            gm[i, j], _, _, guess = wave_gm(sec, volume, lcg, kg, 0.5 * H[i], 2 * math.pi / lam[i], lcg + f * lam[i], guess)
-    mean = gm.mean(axis=1)
-    delta = 0.5 * (gm.max(axis=1) - gm.min(axis=1))
+            try:
+                gm[i, j], _, _, guess = wave_gm(sec, volume, lcg, kg, 0.5 * H[i], 2 * math.pi / lam[i],
+                                                lcg + f * lam[i], guess)
+            except StabflowError:  # no equilibrium on this wave: the case stays NaN, C1 NaN
+                break
+    bad = ~np.isfinite(gm).all(axis=1)
+    mean = np.where(bad, np.nan, gm.mean(axis=1))
+    delta = np.where(bad, np.nan, 0.5 * (gm.max(axis=1) - gm.min(axis=1)))
+    why = ("no service speed (criteria.service_speed_kn)" if v_d is None else
+           f"calm-water GM {gm0:.3g} m, not positive" if not gm0 > 0 else
+           "no finite calm-water roll period" if not math.isfinite(t_phi) else "")
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where(mean > 0, delta / mean, np.nan)
-        vpr = np.where(mean > 0, np.abs(2 * lam / t_phi * np.sqrt(mean / gm0) - np.sqrt(G * lam / (2 * math.pi))), np.nan)
+        vpr = (np.where(mean > 0, np.abs(2 * lam / t_phi * np.sqrt(mean / gm0) - np.sqrt(G * lam / (2 * math.pi))),
+                        np.nan) if not why else np.full(len(W), np.nan))
     gm_ok = (mean > 0) & (ratio < r_pr)
-    speed_ok = (vpr > v_d) if v_d is not None else np.zeros(len(W), bool)
-    fails = np.where(np.isfinite(mean), (~(gm_ok | speed_ok)).astype(float), np.nan)
+    speed_ok = (vpr > v_d) if not why else np.zeros(len(W), bool)
+    fails = np.where(bad, np.nan, (~(gm_ok | speed_ok)).astype(float))
     ds = xr.Dataset(
         {"c1_weight": ("c1_case", W), "c1_wave_length": ("c1_case", lam), "c1_wave_height": ("c1_case", H),
          "c1_gm_wave": ("c1_case", mean), "c1_delta_gm": ("c1_case", delta), "c1_gm_ratio": ("c1_case", ratio),
@@ -365,23 +386,29 @@ def parametric_c1(sec: Sections, volume: float, lcg: float, kg: float, gm0: floa
     )
     ds["c1"] = float(np.sum(W * fails))
     ds.attrs.update(c1_r_pr=float(r_pr), c1_roll_period=float(t_phi), c1_gm=float(gm0),
-                    c1_service_speed=np.nan if v_d is None else float(v_d), c1_crest_positions=C1_CRESTS)
+                    c1_service_speed=np.nan if v_d is None else float(v_d), c1_crest_positions=C1_CRESTS,
+                    c1_speed_requirement=f"not evaluated: {why}" if why else "evaluated",
+                    c1_no_equilibrium=", ".join(str(i + 1) for i in np.flatnonzero(bad)) or "none")
     return ds
 
 
 def parametric_c1_row(c1: xr.Dataset, std: Standards, cases_source: str) -> Row:
-    """Parametric rolling, level 2, first check: C1 against RPR0 (C1 <= RPR0: not vulnerable; else the
-    second check C2 decides, which stabflow does not compute). NOT EVALUATED while RPR0 and the wave
-    cases are the drafts'; without a service speed C1 is an upper bound and no indicative verdict."""
+    """Parametric rolling, level 2, first check: C1 against RPR0 (the draft's "less than RPR0": not
+    vulnerable, read here as C1 <= RPR0 like every limit, within round-off; else the second check C2
+    decides, which stabflow does not compute). NOT EVALUATED while RPR0 and the wave cases are the
+    drafts'; with the speed requirement unevaluated C1 is an upper bound and no indicative verdict."""
     wc = std.get(C1_CASES)
     miss, drafted = [], []
     if not wc.available:
         miss.append(f"{wc.key} ({wc.source})")
         drafted.append(wc)
-    if not np.isfinite(c1.attrs["c1_service_speed"]):
-        miss.append("the ship's service speed (criteria.service_speed_kn): C1 without the speed requirement, an upper bound")
+    speed = str(c1.attrs["c1_speed_requirement"])
+    if speed != "evaluated":
+        miss.append(f"the speed requirement ({speed.removeprefix('not evaluated: ')}): C1 an upper bound")
+    if c1.attrs["c1_no_equilibrium"] != "none":
+        miss.append(f"GM on the wave: no equilibrium on wave case(s) {c1.attrs['c1_no_equilibrium']}")
     n = int(c1.sizes["c1_case"])
-    return against("parametric rolling: C1 over the 2013 draft's regular waves (GM and speed requirements)",
+    return against("parametric rolling: C1 over the level-2 regular waves (GM and speed requirements)",
                    "SGISC parametric rolling, level 2", float(c1["c1"]), "-", std.get(f"{SG}.parametric_rolling.level_2.RPR0"),
                    "<=", missing=miss, drafted=drafted,
                    note=f"{n} waves ({cases_source}); R_PR {c1.attrs['c1_r_pr']:.3f}, T_phi {c1.attrs['c1_roll_period']:.2f} s, "

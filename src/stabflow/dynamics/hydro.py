@@ -118,13 +118,16 @@ def excitation(body, omega, heading_deg, rho, solver=None) -> np.ndarray:
     return np.array([fk[d] + res.forces[d] for d in DOFS])
 
 
-def natural_coefficients(body, masses, stiff, rho, iterations=3) -> dict:
-    """A_jj, B_jj at each mode's natural frequency (fixed point on w = sqrt(C/(M + A)))."""
+def natural_coefficients(body, masses, stiff, rho, iterations=3, modes=("heave", "roll", "pitch")) -> dict:
+    """(w, A_jj, B_jj) at each mode's natural frequency (fixed point on w = sqrt(C/(M + A))), for
+    ``modes`` (``masses`` and ``stiff`` are given for heave, roll and pitch, in that order)."""
     import capytaine as cpt
 
     solver = cpt.BEMSolver()
     out = {}
     for j, mode in enumerate(["heave", "roll", "pitch"]):
+        if mode not in modes:
+            continue
         a = 0.0
         for _ in range(iterations):
             w = np.sqrt(stiff[j] / (masses[j] + a))

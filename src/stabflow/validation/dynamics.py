@@ -709,7 +709,8 @@ def natural_roll_period(ship: Ship, sec: Sections, st: xr.Dataset) -> float:
 
     h0, th0, _ = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))
     body = immersed_body(bem_mesh(ship), h0, th0, float(st["lcg"]), float(st["kg"]))
-    w, _, _ = natural_coefficients(body, [co.mass, co.i44, co.i55], [co.c33, co.c44, co.c55], ship.rho)["roll"]
+    w, _, _ = natural_coefficients(body, [co.mass, co.i44, co.i55], [co.c33, co.c44, co.c55], ship.rho,
+                                   modes=("roll",))["roll"]
     return float(2 * np.pi / w)
 
 
