@@ -46,3 +46,22 @@ def test_criteria_table_rows_have_one_cell_per_column():
         assert x.count(" | ") == 6, x
     assert "(indicative against the draft: FAIL) | missing: x" in lines[2] and "(draft: <= 0.3)" in lines[2]
     assert "draft: draft doc" in lines[2] and "draft" not in lines[1]
+
+
+def test_criteria_c1_table_one_cell_per_column():
+    """The criteria chapter's C1 section (the template's own block): C1, the speed requirement's state,
+    and one row of eight cells per wave (a NaN V_PR printed, not dropped)."""
+    import re
+
+    from stabflow.report.book import _env
+
+    text = (Path(__file__).resolve().parents[2] / "src/stabflow/report/templates/criteria.md.j2").read_text()
+    block = re.search(r"{% if c1 %}.*?{% endif %}\n", text, re.S).group(0)
+    row = {"i": 1, "w": 0.25, "lam": 100.0, "h": 2.0, "gm": 1.9, "ratio": 0.05, "vpr": 3.2, "fails": 0.0}
+    c1 = {"value": 0.125, "speed": "evaluated", "tphi": 11.5, "rpr": 0.477, "vd": 15.41, "crests": 10,
+          "rows": [row, {**row, "i": 2, "vpr": math.nan, "fails": 1.0}]}
+    out = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(c1=c1)
+    assert "**C1 = 0.125**" in out and "speed requirement evaluated" in out and "V_D = 15.41 m/s" in out
+    lines = [x for x in out.splitlines() if x.startswith("| ")]
+    assert len(lines) == 3 and all(x.count(" | ") == 7 for x in lines), lines
+    assert "| 2 | 0.25 | 100.0 | 2.000 | 1.900 | 0.050 |" in lines[2]

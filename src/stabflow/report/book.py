@@ -335,6 +335,15 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
            "one": float(d.pr_roll_1dof.sel(pr_heading=h, pr_froude=f, pr_steepness=x)),
            "three": float(d.pr_roll_3dof.sel(pr_heading=h, pr_froude=f, pr_steepness=x))}
           for h in d.pr_heading.values for f in d.pr_froude.values for x in d.pr_steepness.values] if "pr_roll_1dof" in d else []
+    c1 = None
+    if "c1_fails" in d:
+        c1 = {"value": float(d.c1), "speed": str(d.attrs.get("c1_speed_requirement", "")),
+              "tphi": float(d.attrs.get("c1_roll_period", np.nan)), "rpr": float(d.attrs.get("c1_r_pr", np.nan)),
+              "vd": float(d.attrs.get("c1_service_speed", np.nan)), "crests": int(d.attrs.get("c1_crest_positions", 0)),
+              "rows": [{"i": int(i), "w": float(d.c1_weight.sel(c1_case=i)), "lam": float(d.c1_wave_length.sel(c1_case=i)),
+                        "h": float(d.c1_wave_height.sel(c1_case=i)), "gm": float(d.c1_gm_wave.sel(c1_case=i)),
+                        "ratio": float(d.c1_gm_ratio.sel(c1_case=i)), "vpr": float(d.c1_speed_resonance.sel(c1_case=i)),
+                        "fails": float(d.c1_fails.sel(c1_case=i))} for i in d.c1_case.values]}
     seas = None
     if "ew_effective_height" in d:
         occ = d.sea_probability.values > 0
@@ -358,7 +367,8 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
                    block=float(d.block_coefficient), deck_edge=float(d.deck_edge_immersion),
                    flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1, dsa=dsa,
                    sr=sr, sr_steep=sr_steep, sr_wf=sr_wf, fn_service=float(d.froude_service),
-                   pr=pr, pr_phi0=float(d.attrs.get("pr_phi0_deg", np.nan)), pr_duration=float(d.attrs.get("pr_duration", np.nan)))
+                   pr=pr, pr_phi0=float(d.attrs.get("pr_phi0_deg", np.nan)), pr_duration=float(d.attrs.get("pr_duration", np.nan)),
+                   c1=c1)
 
 
 def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
