@@ -171,6 +171,11 @@ def test_level2_sea_state_rows(barge):
     assert str(r.verdict_draft.values) == "PASS" and float(r.criterion_draft_limit) == 0.06
     assert "Table 3-A-1" in str(r.criterion_draft_source.values) and float(ds.attrs["c1_service_speed"]) == pytest.approx(10 * 0.514444, rel=1e-5)
     assert ds.attrs["c1_speed_requirement"] == "evaluated" and ds.attrs["c1_no_equilibrium"] == "none"
+    # C2 (2013 draft): speeds Fn 0 and 0.1 up to the service Fn 0.164; this config's 1-DOF coefficients
+    # are at Fn 0.1 only, so C2 is NaN and the row names Fn 0
+    r = row(ds, "parametric rolling: C2")
+    assert list(ds.c2_froude.values) == [0.0, 0.1] and ds.attrs["c2_missing_speeds"] == "0"
+    assert np.isnan(float(r.criterion_value)) and "the 1-DOF coefficients at Fn 0 " in str(r.verdict_reason.values)
     assert ds.sizes["c1_case"] == 16 and float(ds.c1_gm_ratio.max()) < 0.01 and float(ds.c1) == 0.0
     assert float(ds.ds_heel_wind) == pytest.approx(float(ds.wc_phi0))
     assert float(ds.ea_crew_height) == pytest.approx(D)
@@ -181,3 +186,47 @@ def test_level2_sea_state_rows(barge):
     assert 0 < float(ds.ds_long_term_rate) < np.inf and np.all(np.diff(ds.ea_long_term_rate.values) < 0)
     assert ds.ew_roll_1dof.where(occurs).notnull().sum() > 0
     assert float(ds.ew_effective_height.max()) > 0 and float(ds.ew_gm_min.min()) > 0
+
+
+def test_parametric_c2_weighting_and_speeds():
+    """C2 (2013 draft, 2.11.3.3-2.11.3.4.1) on a stand-in ship: GZ = GM sin(phi) on waves up to 1 m and
+    GZ = -0.1 sin(phi) (no stability) at 2 m, the same at every crest position, so the 1-DOF roll from
+    5 deg decays below 2 m and capsizes (90 deg) at 2 m; the heights 0.01 i L (L 100 m) up to the table's
+    top 2 m; a sea state counts where the roll amplitude interpolated at its effective height exceeds
+    25 deg; C2 = the probability of those, averaged over Fn 0 and 0.1 and both headings; a speed without
+    1-DOF coefficients, or no service speed, gives NaN with the speed named."""
+    import xarray as xr
+
+    from stabflow.criteria.sea_states import parametric_c2
+
+    L = 100.0
+    heel = np.arange(0.0, 70.01, 1.0)
+    s = np.sin(np.radians(heel))
+    gz = np.stack([np.tile(1.0 * s, (4, 1)), np.tile(1.0 * s, (4, 1)), np.tile(-0.1 * s, (4, 1))])
+    heff = np.array([[0.5, 1.2], [1.7, 1.95]])
+    p = xr.DataArray([[0.1, 0.2], [0.3, 0.4]], dims=("hs", "tz"), coords={"hs": [1.0, 2.0], "tz": [5.0, 6.0]})
+    ew = xr.Dataset({"ew_table_gz": (("ew_height", "ew_crest", "ew_heel"), gz),
+                     "ew_effective_height": (("hs", "tz"), heff)},
+                    coords={"ew_height": [0.0, 1.0, 2.0], "ew_heel": heel, "hs": [1.0, 2.0], "tz": [5.0, 6.0]})
+    m = 1e6
+    pr = xr.Dataset({"pr_inertia": ("pr_froude", [m * 25.0] * 2), "pr_b44": ("pr_froude", [2e6] * 2),
+                     "pr_b44q": ("pr_froude", [0.0] * 2)},
+                    coords={"pr_froude": [0.0, 0.1], "pr_heading": [0.0, 180.0]},
+                    attrs={"pr_duration": 60.0, "pr_dt": 0.1, "pr_phi0_deg": 5.0, "pr_weight": m * 9.81})
+    d = parametric_c2(ew, pr, p, L, 0.15, 25.0)
+    np.testing.assert_allclose(d.c2_height.values, [0.0, 1.0, 2.0])
+    assert list(d.c2_froude.values) == [0.0, 0.1] and d.attrs["c2_missing_speeds"] == "none"
+    roll = d.c2_roll.values
+    assert (roll[..., :2] < 5.0 + 1e-9).all() and (roll[..., 2] == 90.0).all()
+    # amplitude at H: below 1 m that of the stable waves, between 1 and 2 m linear up to 90 deg
+    for a in range(2):
+        for v in range(2):
+            amp = np.interp(heff, [0.0, 1.0, 2.0], roll[a, v])
+            assert float(d.c2_by_speed[a, v]) == pytest.approx(float(np.sum(p.values * (amp > 25.0))))
+    # 1.2 m: 0.2 x (90 - r1) + r1 < 25 (r1 < 5 deg); 1.7 and 1.95 m above 25 deg: C2 = 0.3 + 0.4
+    assert float(d.c2) == pytest.approx(0.7)
+    assert d.attrs["c2_probability_left_out"] == 0.0
+    miss = parametric_c2(ew, pr, p, L, 0.25, 25.0)  # Fn 0.2 has no coefficients in pr
+    assert miss.attrs["c2_missing_speeds"] == "0.2" and np.isnan(float(miss.c2))
+    none = parametric_c2(ew, pr, p, L, None, 25.0)
+    assert none.sizes["c2_froude"] == 0 and np.isnan(float(none.c2))

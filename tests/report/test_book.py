@@ -65,3 +65,21 @@ def test_criteria_c1_table_one_cell_per_column():
     lines = [x for x in out.splitlines() if x.startswith("| ")]
     assert len(lines) == 3 and all(x.count(" | ") == 7 for x in lines), lines
     assert "| 2 | 0.25 | 100.0 | 2.000 | 1.900 | 0.050 |" in lines[2]
+
+
+def test_criteria_c2_section_renders():
+    """The C2 section: its value, the speeds it misses, one row of three cells per speed and heading."""
+    import re
+
+    from stabflow.report.book import _env
+
+    text = (Path(__file__).resolve().parents[2] / "src/stabflow/report/templates/criteria.md.j2").read_text()
+    block = re.search(r"{% if c2 %}.*?{% endif %}\n{% endif %}\n", text, re.S).group(0)
+    c2 = {"value": 0.0123, "threshold": 25.0, "left_out": 0.001, "missing": "none",
+          "rows": [{"heading": 0.0, "fn": 0.1, "c2": 0.02}, {"heading": 180.0, "fn": 0.1, "c2": 0.0046}]}
+    out = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(c2=c2)
+    assert "**C2 = 0.0123**" in out and "exceeds 25°" in out and "NaN" not in out
+    lines = [x for x in out.splitlines() if x.startswith("| ")]
+    assert len(lines) == 3 and all(x.count(" | ") == 2 for x in lines), lines
+    miss = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(c2={**c2, "missing": "0.4", "rows": []})
+    assert "no 1-DOF coefficients at Fn 0.4" in miss and "| " not in miss

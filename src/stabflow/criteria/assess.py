@@ -119,7 +119,7 @@ def assess(ship: Ship, hull: xr.Dataset, st: xr.Dataset, cfg: dict, std: Standar
 
     sea_cfg = _fill_defaults(schema("config")["properties"]["criteria"]["properties"]["sea_states"], cfg.get("sea_states", {}))
     srows, seas = sea_states.sea_states(ship, sec, st, stab, wq, sea_cfg, std, r_pr[0], depth,
-                                        failure_angle(std, stab.vanishing, stab.flooding), pr, hydro)
+                                        failure_angle(std, stab.vanishing, stab.flooding), pr, hydro, fn)
     rows += srows
     ds = rows_dataset(rows, ship.name)
     ds = ds.merge(gw).merge(pr).merge(seas).merge(c1)

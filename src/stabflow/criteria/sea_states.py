@@ -138,8 +138,84 @@ def parametric_roll_sea_states(ew: xr.Dataset, pr: xr.Dataset, lam: float) -> xr
     return xr.DataArray(out, dims=h.dims, coords=h.coords, name="ew_roll_1dof")
 
 
+#: the 2013 draft's parametric-rolling C2 (SLF 55/WP.3 Annex 1, 2.11.3.3-2.11.3.4.1, read in Umeda,
+#: ISSW 2013, pp. 13-14): the roll amplitude of the 1-DOF model in regular waves lambda = L of heights
+#: h_i = 0.01 i L, i = 0 ... 10 (C2_HEIGHTS), for Froude numbers from 0 to the service Froude number in
+#: steps of "[0.1]" (C2_FROUDE_STEP), head and following seas
+C2_HEIGHTS = 0.01 * np.arange(11)
+C2_FROUDE_STEP = 0.1
+
+
+def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, fn_service: float | None,
+                  threshold_deg: float) -> xr.Dataset:
+    """Parametric rolling, level 2, second check as the 2013 draft states it: for each speed and
+    heading, C2 = sum_i W_i C_i over the sea states of the scatter table (W_i their probability), C_i = 1
+    where the roll amplitude on the sea state's effective wave (lambda = L, height H_i = ``ew``'s
+    ``ew_effective_height``: stabflow's Grim wave; the draft leaves H_i's definition to an explanatory
+    note "to be developed") exceeds ``threshold_deg``; the roll amplitude at H_i interpolated linearly
+    from the amplitudes at the heights h = 0.01 i L (the largest |roll| of the last quarter of a 1-DOF run
+    with GZ on the passing wave, :func:`stabflow.criteria.sgisc.roll_1dof`, the regular-wave cases' start
+    heel, duration and step; 90 deg: capsized; heights above the effective-wave table's top, which no sea
+    state reaches, are left out). C2 is the average over the speeds and headings.
+
+    The speeds are Fn = 0, 0.1, ... up to ``fn_service`` (None: none, C2 NaN); the 1-DOF coefficients
+    at each come from ``pr`` (its ``pr_froude``): a speed missing there is named in
+    ``c2_missing_speeds`` and C2 is NaN. Sea states whose effective wave would break (H_eff > L/7) or
+    without one are left out of the sum; ``c2_probability_left_out`` is their probability.
+
+    Returns a Dataset: ``c2_roll`` (c2_heading, c2_froude, c2_height) [degree], ``c2_by_speed``
+    (c2_heading, c2_froude), scalar ``c2``; attributes as named."""
+    from stabflow.criteria.sgisc import roll_1dof
+
+    heel = ew["ew_heel"].values
+    heights, gz = ew["ew_height"].values, ew["ew_table_gz"].values
+    hgrid = C2_HEIGHTS * lam
+    hgrid = hgrid[hgrid <= heights[-1] + 1e-9]
+    fns = (np.round(np.arange(0.0, fn_service + 1e-9, C2_FROUDE_STEP), 10) if fn_service is not None
+           else np.zeros(0))
+    have = {round(float(f), 10): b for b, f in enumerate(pr["pr_froude"].values)}
+    missing = [f for f in fns if round(float(f), 10) not in have]
+    heads = pr["pr_heading"].values
+    roll = np.full((len(heads), len(fns), len(hgrid)), np.nan)
+    c = math.sqrt(G * lam / (2 * math.pi))
+    dur, dt, phi0 = float(pr.attrs["pr_duration"]), float(pr.attrs["pr_dt"]), float(pr.attrs["pr_phi0_deg"])
+    keep = int(round(0.25 * dur / dt))
+    for m, H in enumerate(hgrid):
+        k = min(max(int(np.searchsorted(heights, H)) - 1, 0), len(heights) - 2)
+        f = (H - heights[k]) / (heights[k + 1] - heights[k])
+        tab = (1.0 - f) * gz[k] + f * gz[k + 1]
+        for a, mu in enumerate(heads):
+            for v, fn in enumerate(fns):
+                b = have.get(round(float(fn), 10))
+                if b is None:
+                    continue
+                v_rel = c * math.cos(math.radians(float(mu))) - float(fn) * math.sqrt(G * lam)
+                r = roll_1dof(tab, heel, lam, v_rel, float(pr["pr_inertia"][b]), float(pr["pr_b44"][b]),
+                              float(pr["pr_b44q"][b]), float(pr.attrs["pr_weight"]), phi0, dur, dt)
+                roll[a, v, m] = 90.0 if np.isnan(r[-1]) else float(np.nanmax(np.abs(r[-keep:])))
+    heff = ew["ew_effective_height"].values
+    use = _occurs(p) & np.isfinite(heff) & (heff <= BREAKING_STEEPNESS * lam)
+    w = np.where(use, p.values, 0.0)
+    by = np.full((len(heads), len(fns)), np.nan)
+    for a in range(len(heads)):
+        for v in range(len(fns)):
+            if np.isfinite(roll[a, v]).all() and len(hgrid) > 1:
+                amp = np.interp(np.where(use, heff, 0.0), hgrid, roll[a, v])
+                by[a, v] = float(np.sum(w * (amp > threshold_deg)))
+    value = float(np.mean(by)) if len(fns) and not missing and np.isfinite(by).all() else math.nan
+    ds = xr.Dataset({"c2_roll": (("c2_heading", "c2_froude", "c2_height"), roll),
+                     "c2_by_speed": (("c2_heading", "c2_froude"), by), "c2": ((), value)},
+                    coords={"c2_heading": heads, "c2_froude": fns, "c2_height": hgrid})
+    ds.attrs.update(c2_threshold_deg=float(threshold_deg),
+                    c2_missing_speeds=", ".join(f"{x:g}" for x in missing) or "none",
+                    c2_service_froude=math.nan if fn_service is None else float(fn_service),
+                    c2_probability_left_out=float(np.nansum(np.where(_occurs(p) & ~use, p.values, 0.0))))
+    return ds
+
+
 def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standards, r_pr: float,
-               depth: float, phi_f: tuple[float, str], pr: xr.Dataset, hydro: xr.Dataset | None = None) -> tuple[list[Row], xr.Dataset]:
+               depth: float, phi_f: tuple[float, str], pr: xr.Dataset, hydro: xr.Dataset | None = None,
+               fn_service: float | None = None) -> tuple[list[Row], xr.Dataset]:
     """Rows and quantities of the level-2 sea-state physics of one ship.
 
     Parameters
@@ -152,6 +228,7 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
     phi_f : (failure angle [degree], what governs it) (:func:`stabflow.criteria.dsa_run.failure_angle`).
     pr : the regular-wave parametric-roll cases (:func:`stabflow.criteria.sgisc.parametric_roll_cases`):
         headings, speeds and 1-DOF coefficients of the sea-state parametric-roll runs.
+    fn_service : the service Froude number (None: not given), the top speed of C2 (:func:`parametric_c2`).
     """
     from stabflow.config import _fill_defaults, schema
     from stabflow.statistics.ensemble import build_model
@@ -189,6 +266,12 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
         levels.append(float(acc.value))
     bs = beam_sea_cells(bsm, p.where(occurs), phi_f[0], phi_w, c44, h, sorted(levels))
     ds = ew.merge(bs)
+    # ---- parametric rolling's C2 as the 2013 draft states it (roll angle: the standard, else its draft) ----
+    thr = std.get(f"{SG}.parametric_rolling.level_2.roll_angle_threshold_deg")
+    thr_deg = float(thr.value) if thr.available else float(thr.draft["value"]) if thr.draft else math.nan
+    c2 = parametric_c2(ew, pr, p, stab.lwl, fn_service, thr_deg)
+    ds = ds.merge(c2)
+    ds.attrs.update(c2.attrs)
     # ---- long-term figures over the scatter table ----
     breaking = ds["ew_effective_height"] > BREAKING_STEEPNESS * stab.lwl
     p_break = _fraction(p, breaking.astype(float))
@@ -247,13 +330,24 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
                         note=f"largest delta GM / GM on the effective wave {_largest(ds['ew_delta_gm_ratio'], p, '.3f')}; "
                              f"probability of sea states where it exceeds level 1's R_PR {r_pr:.3f}: {frac_pr:.3g}"
                              + breaking_note))
+    c2_miss = list(wave_miss) + ["the effective wave height H_i of C2 (the 2013 draft leaves it to an explanatory note; "
+                                 "stabflow's Grim wave here)"]
+    if not thr.available:
+        c2_miss.append(f"{thr.key} ({thr.source})")
+    if fn_service is None:
+        c2_miss.append("the ship's service speed (criteria.service_speed_kn): the top speed of C2")
+    elif ds.attrs["c2_missing_speeds"] != "none":
+        c2_miss.append(f"the 1-DOF coefficients at Fn {ds.attrs['c2_missing_speeds']} (criteria.parametric.froude_numbers)")
     rows.append(against("parametric rolling: C2 (1-DOF roll on the effective waves)", "SGISC parametric rolling, level 2",
-                        math.nan, "-", std.get_or_missing(f"{pr_key}.RPR0", f"{CIRC}, parametric rolling level 2"), "<=",
-                        missing=wave_miss + [f"{std.get(f'{pr_key}.roll_angle_threshold_deg').key} (the roll angle of C2)",
-                                             "the circular's speeds and headings of C2 (not read)"],
-                        note=f"largest 1-DOF roll with GZ on the passing effective wave {_largest(ds['ew_roll_1dof'], p, '.1f', 'deg')} "
-                             f"(headings {', '.join(f'{x:g}' for x in pr.pr_heading.values)} deg, Fn "
-                             f"{', '.join(f'{x:g}' for x in pr.pr_froude.values)}, from {float(pr.attrs['pr_phi0_deg']):g} deg heel)"))
+                        float(ds["c2"]), "-", std.get_or_missing(f"{pr_key}.RPR0", f"{CIRC}, parametric rolling level 2"), "<=",
+                        missing=c2_miss, drafted=[thr],
+                        note=f"the 2013 draft's C2 (SLF 55/WP.3 Annex 1, 2.11.3.3-2.11.3.4.1): per speed and heading the "
+                             f"probability of the sea states whose roll amplitude on the effective wave exceeds "
+                             f"{thr_deg:g} deg, averaged over Fn {', '.join(f'{x:g}' for x in ds.c2_froude.values) or 'none'} "
+                             f"and headings {', '.join(f'{x:g}' for x in pr.pr_heading.values)} deg (the 2013 text compares C2 "
+                             f"with RPR1, bracketed [0.15 or 0.25]); largest 1-DOF roll with GZ on the passing effective wave "
+                             f"{_largest(ds['ew_roll_1dof'], p, '.1f', 'deg')} (from {float(pr.attrs['pr_phi0_deg']):g} deg heel); "
+                             f"sea states left out (no or a breaking effective wave) {ds.attrs['c2_probability_left_out']:.3g}"))
     dl1 = std.get_or_missing(f"{SG}.dead_ship.level_1.standard", f"{CIRC}, dead ship level 1")
     area = (f"the IS Code weather criterion's areas a = {wq['wc_area_a']:.4f}, b = {wq['wc_area_b']:.4f} m rad"
             if "wc_area_a" in wq else "no windage in the ship config: the weather criterion's areas are not computed")

@@ -344,6 +344,13 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
                         "h": float(d.c1_wave_height.sel(c1_case=i)), "gm": float(d.c1_gm_wave.sel(c1_case=i)),
                         "ratio": float(d.c1_gm_ratio.sel(c1_case=i)), "vpr": float(d.c1_speed_resonance.sel(c1_case=i)),
                         "fails": float(d.c1_fails.sel(c1_case=i))} for i in d.c1_case.values]}
+    c2 = None
+    if "c2_by_speed" in d:
+        c2 = {"value": float(d.c2), "threshold": float(d.attrs.get("c2_threshold_deg", np.nan)),
+              "left_out": float(d.attrs.get("c2_probability_left_out", np.nan)),
+              "missing": str(d.attrs.get("c2_missing_speeds", "none")),
+              "rows": [{"heading": float(h), "fn": float(f), "c2": float(d.c2_by_speed.sel(c2_heading=h, c2_froude=f))}
+                       for h in d.c2_heading.values for f in d.c2_froude.values]}
     seas = None
     if "ew_effective_height" in d:
         occ = d.sea_probability.values > 0
@@ -368,7 +375,7 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
                    flooding=None if not np.isfinite(flooding) else flooding, routes=routes, l1=l1, dsa=dsa,
                    sr=sr, sr_steep=sr_steep, sr_wf=sr_wf, fn_service=float(d.froude_service),
                    pr=pr, pr_phi0=float(d.attrs.get("pr_phi0_deg", np.nan)), pr_duration=float(d.attrs.get("pr_duration", np.nan)),
-                   c1=c1)
+                   c1=c1, c2=c2)
 
 
 def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
