@@ -191,8 +191,8 @@ def test_level2_sea_state_rows(barge):
 def test_parametric_c2_weighting_and_speeds():
     """C2 (2013 draft, 2.11.3.3-2.11.3.4.1) on a stand-in ship: GZ = GM sin(phi) on waves up to 1 m and
     GZ = -0.1 sin(phi) (no stability) at 2 m, the same at every crest position, so the 1-DOF roll from
-    5 deg decays below 2 m and capsizes (90 deg) at 2 m; the heights 0.01 i L (L 100 m) up to the table's
-    top 2 m; a sea state counts where the roll amplitude interpolated at its effective height exceeds
+    5 deg decays below 2 m and capsizes (90 deg) at 2 m; the heights 0.01 i L (L 100 m) below the table's
+    top 2 m and the top; a sea state counts where the roll amplitude interpolated at its effective height exceeds
     25 deg; C2 = the probability of those, averaged over Fn 0 and 0.1 and both headings; a speed without
     1-DOF coefficients, or no service speed, gives NaN with the speed named."""
     import xarray as xr
@@ -226,6 +226,9 @@ def test_parametric_c2_weighting_and_speeds():
     # 1.2 m: 0.2 x (90 - r1) + r1 < 25 (r1 < 5 deg); 1.7 and 1.95 m above 25 deg: C2 = 0.3 + 0.4
     assert float(d.c2) == pytest.approx(0.7)
     assert d.attrs["c2_probability_left_out"] == 0.0
+    # a top off the draft's grid (1.5 m, L 100 m): heights 0, 1 and the top 1.5 m
+    top = ew.assign_coords(ew_height=[0.0, 1.0, 1.5])
+    assert list(parametric_c2(top, pr, p, L, 0.15, 25.0).c2_height.values) == [0.0, 1.0, 1.5]
     miss = parametric_c2(ew, pr, p, L, 0.25, 25.0)  # Fn 0.2 has no coefficients in pr
     assert miss.attrs["c2_missing_speeds"] == "0.2" and np.isnan(float(miss.c2))
     none = parametric_c2(ew, pr, p, L, None, 25.0)

@@ -155,8 +155,9 @@ def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, f
     note "to be developed") exceeds ``threshold_deg``; the roll amplitude at H_i interpolated linearly
     from the amplitudes at the heights h = 0.01 i L (the largest |roll| of the last quarter of a 1-DOF run
     with GZ on the passing wave, :func:`stabflow.criteria.sgisc.roll_1dof`, the regular-wave cases' start
-    heel, duration and step; 90 deg: capsized; heights above the effective-wave table's top, which no sea
-    state reaches, are left out). C2 is the average over the speeds and headings.
+    heel, duration and step; 90 deg: capsized) below the effective-wave table's top (the largest
+    effective wave, at most L/7) and at the top itself: no sea state needs more, none is extrapolated.
+    C2 is the average over the speeds and headings.
 
     The speeds are Fn = 0, 0.1, ... up to ``fn_service`` (None: none, C2 NaN); the 1-DOF coefficients
     at each come from ``pr`` (its ``pr_froude``): a speed missing there is named in
@@ -169,8 +170,11 @@ def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, f
 
     heel = ew["ew_heel"].values
     heights, gz = ew["ew_height"].values, ew["ew_table_gz"].values
+    # the draft's heights up to the effective-wave table's top, and the top itself (the largest effective
+    # wave, at most L/7), so that no sea state's amplitude is extrapolated
     hgrid = C2_HEIGHTS * lam
-    hgrid = hgrid[hgrid <= heights[-1] + 1e-9]
+    hgrid = hgrid[hgrid < heights[-1] - 1e-9]
+    hgrid = np.append(hgrid, heights[-1]) if heights[-1] > 0 else hgrid
     fns = (np.round(np.arange(0.0, fn_service + 1e-9, C2_FROUDE_STEP), 10) if fn_service is not None
            else np.zeros(0))
     have = {round(float(f), 10): b for b, f in enumerate(pr["pr_froude"].values)}
