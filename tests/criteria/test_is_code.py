@@ -225,10 +225,19 @@ def test_parametric_c2_weighting_and_speeds():
             assert float(d.c2_by_speed[a, v]) == pytest.approx(float(np.sum(p.values * (amp > 25.0))))
     # 1.2 m: 0.2 x (90 - r1) + r1 < 25 (r1 < 5 deg); 1.7 and 1.95 m above 25 deg: C2 = 0.3 + 0.4
     assert float(d.c2) == pytest.approx(0.7)
-    assert d.attrs["c2_probability_left_out"] == 0.0
+    assert d.attrs["c2_probability_left_out"] == 0.0 and d.attrs["c2_probability_breaking"] == 0.0
     # a top off the draft's grid (1.5 m, L 100 m): heights 0, 1 and the top 1.5 m
     top = ew.assign_coords(ew_height=[0.0, 1.0, 1.5])
     assert list(parametric_c2(top, pr, p, L, 0.15, 25.0).c2_height.values) == [0.0, 1.0, 1.5]
+    # head seas only: the following seas missing, C2 NaN and named; no roll angle: NaN
+    head = parametric_c2(ew, pr.sel(pr_heading=[180.0]), p, L, 0.15, 25.0)
+    assert head.attrs["c2_missing_headings"] == "0" and np.isnan(float(head.c2))
+    assert np.isnan(float(parametric_c2(ew, pr, p, L, 0.15, math.nan).c2))
+    # an effective wave that would break (> L/7 = 14.3 m) counts as exceeding: 0.1 + 0.3 + 0.4
+    brk = ew.copy(deep=True)
+    brk["ew_effective_height"].values[0, 0] = 15.0
+    b = parametric_c2(brk, pr, p, L, 0.15, 25.0)
+    assert float(b.c2) == pytest.approx(0.8) and b.attrs["c2_probability_breaking"] == pytest.approx(0.1)
     miss = parametric_c2(ew, pr, p, L, 0.25, 25.0)  # Fn 0.2 has no coefficients in pr
     assert miss.attrs["c2_missing_speeds"] == "0.2" and np.isnan(float(miss.c2))
     none = parametric_c2(ew, pr, p, L, None, 25.0)

@@ -75,7 +75,8 @@ def test_criteria_c2_section_renders():
 
     text = (Path(__file__).resolve().parents[2] / "src/stabflow/report/templates/criteria.md.j2").read_text()
     block = re.search(r"{% if c2 %}.*?{% endif %}\n{% endif %}\n", text, re.S).group(0)
-    c2 = {"value": 0.0123, "threshold": 25.0, "left_out": 0.001, "missing": "none",
+    c2 = {"value": 0.0123, "threshold": 25.0, "left_out": 0.0, "missing": "none", "headings": "none", "breaking": 0.001,
+          "service": 0.41,
           "rows": [{"heading": 0.0, "fn": 0.1, "c2": 0.02}, {"heading": 180.0, "fn": 0.1, "c2": 0.0046}]}
     out = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(c2=c2)
     assert "**C2 = 0.0123**" in out and "exceeds 25°" in out and "NaN" not in out
@@ -83,3 +84,6 @@ def test_criteria_c2_section_renders():
     assert len(lines) == 3 and all(x.count(" | ") == 2 for x in lines), lines
     miss = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(c2={**c2, "missing": "0.4", "rows": []})
     assert "no 1-DOF coefficients at Fn 0.4" in miss and "| " not in miss
+    nospeed = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(
+        c2={**c2, "value": math.nan, "service": math.nan, "rows": []})
+    assert "no service speed in the ship config" in nospeed

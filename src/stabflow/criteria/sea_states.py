@@ -161,8 +161,10 @@ def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, f
 
     The speeds are Fn = 0, 0.1, ... up to ``fn_service`` (None: none, C2 NaN); the 1-DOF coefficients
     at each come from ``pr`` (its ``pr_froude``): a speed missing there is named in
-    ``c2_missing_speeds`` and C2 is NaN. Sea states whose effective wave would break (H_eff > L/7) or
-    without one are left out of the sum; ``c2_probability_left_out`` is their probability.
+    ``c2_missing_speeds`` and C2 is NaN; so is a heading (0 or 180 deg) missing from ``pr``
+    (``c2_missing_headings``), and C2 is NaN without a finite ``threshold_deg``. A sea state whose effective
+    wave would break (H_eff > L/7) counts as exceeding (on the safe side; ``c2_probability_breaking``); one
+    without an effective wave is left out (``c2_probability_left_out``).
 
     Returns a Dataset: ``c2_roll`` (c2_heading, c2_froude, c2_height) [degree], ``c2_by_speed``
     (c2_heading, c2_froude), scalar ``c2``; attributes as named."""
@@ -180,6 +182,8 @@ def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, f
     have = {round(float(f), 10): b for b, f in enumerate(pr["pr_froude"].values)}
     missing = [f for f in fns if round(float(f), 10) not in have]
     heads = pr["pr_heading"].values
+    # the draft's head and following seas: a heading missing from the regular-wave cases is named, C2 NaN
+    no_heads = [h for h in (0.0, 180.0) if not np.any(np.isclose(heads.astype(float), h))]
     roll = np.full((len(heads), len(fns), len(hgrid)), np.nan)
     c = math.sqrt(G * lam / (2 * math.pi))
     dur, dt, phi0 = float(pr.attrs["pr_duration"]), float(pr.attrs["pr_dt"]), float(pr.attrs["pr_phi0_deg"])
@@ -198,22 +202,29 @@ def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, f
                               float(pr["pr_b44q"][b]), float(pr.attrs["pr_weight"]), phi0, dur, dt)
                 roll[a, v, m] = 90.0 if np.isnan(r[-1]) else float(np.nanmax(np.abs(r[-keep:])))
     heff = ew["ew_effective_height"].values
-    use = _occurs(p) & np.isfinite(heff) & (heff <= BREAKING_STEEPNESS * lam)
+    occ = _occurs(p)
+    use = occ & np.isfinite(heff) & (heff <= BREAKING_STEEPNESS * lam)
+    # a sea state whose effective wave would break (H_eff > L/7) counts as exceeding the roll angle
+    # (stabflow's choice, on the safe side: no regular wave of the table is that steep)
+    breaking = occ & np.isfinite(heff) & (heff > BREAKING_STEEPNESS * lam)
     w = np.where(use, p.values, 0.0)
     by = np.full((len(heads), len(fns)), np.nan)
     for a in range(len(heads)):
         for v in range(len(fns)):
-            if np.isfinite(roll[a, v]).all() and len(hgrid) > 1:
+            if np.isfinite(roll[a, v]).all() and len(hgrid) > 1 and math.isfinite(threshold_deg):
                 amp = np.interp(np.where(use, heff, 0.0), hgrid, roll[a, v])
-                by[a, v] = float(np.sum(w * (amp > threshold_deg)))
-    value = float(np.mean(by)) if len(fns) and not missing and np.isfinite(by).all() else math.nan
+                by[a, v] = float(np.sum(w * (amp > threshold_deg)) + np.sum(np.where(breaking, p.values, 0.0)))
+    value = (float(np.mean(by)) if len(fns) and not missing and not no_heads and np.isfinite(by).all()
+             else math.nan)
     ds = xr.Dataset({"c2_roll": (("c2_heading", "c2_froude", "c2_height"), roll),
                      "c2_by_speed": (("c2_heading", "c2_froude"), by), "c2": ((), value)},
                     coords={"c2_heading": heads, "c2_froude": fns, "c2_height": hgrid})
     ds.attrs.update(c2_threshold_deg=float(threshold_deg),
                     c2_missing_speeds=", ".join(f"{x:g}" for x in missing) or "none",
+                    c2_missing_headings=", ".join(f"{x:g}" for x in no_heads) or "none",
                     c2_service_froude=math.nan if fn_service is None else float(fn_service),
-                    c2_probability_left_out=float(np.nansum(np.where(_occurs(p) & ~use, p.values, 0.0))))
+                    c2_probability_breaking=float(np.sum(np.where(breaking, p.values, 0.0))),
+                    c2_probability_left_out=float(np.nansum(np.where(occ & ~use & ~breaking, p.values, 0.0))))
     return ds
 
 
@@ -342,6 +353,11 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
         c2_miss.append("the ship's service speed (criteria.service_speed_kn): the top speed of C2")
     elif ds.attrs["c2_missing_speeds"] != "none":
         c2_miss.append(f"the 1-DOF coefficients at Fn {ds.attrs['c2_missing_speeds']} (criteria.parametric.froude_numbers)")
+    if ds.attrs["c2_missing_headings"] != "none":
+        c2_miss.append(f"the heading(s) {ds.attrs['c2_missing_headings']} deg of C2 (criteria.parametric.headings_deg: "
+                       "the draft takes head and following seas)")
+    if not math.isfinite(thr_deg):
+        c2_miss.append("a roll angle for C2 (neither the standard nor a draft)")
     rows.append(against("parametric rolling: C2 (1-DOF roll on the effective waves)", "SGISC parametric rolling, level 2",
                         float(ds["c2"]), "-", std.get_or_missing(f"{pr_key}.RPR0", f"{CIRC}, parametric rolling level 2"), "<=",
                         missing=c2_miss, drafted=[thr],
@@ -351,7 +367,8 @@ def sea_states(ship, sec, st: xr.Dataset, stab, wq: dict, cfg: dict, std: Standa
                              f"and headings {', '.join(f'{x:g}' for x in pr.pr_heading.values)} deg (the 2013 text compares C2 "
                              f"with RPR1, bracketed [0.15 or 0.25]); largest 1-DOF roll with GZ on the passing effective wave "
                              f"{_largest(ds['ew_roll_1dof'], p, '.1f', 'deg')} (from {float(pr.attrs['pr_phi0_deg']):g} deg heel); "
-                             f"sea states left out (no or a breaking effective wave) {ds.attrs['c2_probability_left_out']:.3g}"))
+                             f"sea states whose effective wave would break, counted as exceeding: probability "
+                             f"{ds.attrs['c2_probability_breaking']:.3g}"))
     dl1 = std.get_or_missing(f"{SG}.dead_ship.level_1.standard", f"{CIRC}, dead ship level 1")
     area = (f"the IS Code weather criterion's areas a = {wq['wc_area_a']:.4f}, b = {wq['wc_area_b']:.4f} m rad"
             if "wc_area_a" in wq else "no windage in the ship config: the weather criterion's areas are not computed")

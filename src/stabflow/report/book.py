@@ -349,6 +349,9 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
         c2 = {"value": float(d.c2), "threshold": float(d.attrs.get("c2_threshold_deg", np.nan)),
               "left_out": float(d.attrs.get("c2_probability_left_out", np.nan)),
               "missing": str(d.attrs.get("c2_missing_speeds", "none")),
+              "headings": str(d.attrs.get("c2_missing_headings", "none")),
+              "breaking": float(d.attrs.get("c2_probability_breaking", np.nan)),
+              "service": float(d.attrs.get("c2_service_froude", np.nan)),
               "rows": [{"heading": float(h), "fn": float(f), "c2": float(d.c2_by_speed.sel(c2_heading=h, c2_froude=f))}
                        for h in d.c2_heading.values for f in d.c2_froude.values]}
     seas = None
