@@ -103,6 +103,31 @@ def _smallest(x, p, fmt, unit=""):
     return _extreme(x, p, fmt, unit, False)
 
 
+def _gz_at_height(ew: xr.Dataset, height: float) -> np.ndarray:
+    """GZ on the wave lambda = L of ``height`` [m] (ew_crest, ew_heel), linear in height between the
+    effective-wave table's heights (``ew_height``, ``ew_table_gz``)."""
+    heights, gz = ew["ew_height"].values, ew["ew_table_gz"].values
+    m = min(max(int(np.searchsorted(heights, height)) - 1, 0), len(heights) - 2)
+    f = (height - heights[m]) / (heights[m + 1] - heights[m])
+    return (1.0 - f) * gz[m] + f * gz[m + 1]
+
+
+def _roll_amplitude(tab: np.ndarray, ew: xr.Dataset, pr: xr.Dataset, lam: float, heading_deg: float, b: int) -> float:
+    """Largest |roll| [degree] of the last quarter of a 1-DOF run (:func:`stabflow.criteria.sgisc.roll_1dof`)
+    with GZ ``tab`` on the passing wave lambda = ``lam`` at ``heading_deg`` (0 following, 180 head) and
+    the speed ``pr_froude[b]`` of the regular-wave cases ``pr`` (their coefficients, start heel,
+    duration and step); 90 where it capsized."""
+    from stabflow.criteria.sgisc import roll_1dof
+
+    dur, dt, phi0 = float(pr.attrs["pr_duration"]), float(pr.attrs["pr_dt"]), float(pr.attrs["pr_phi0_deg"])
+    keep = int(round(0.25 * dur / dt))
+    c = math.sqrt(G / (2 * math.pi / lam))
+    v_rel = c * math.cos(math.radians(float(heading_deg))) - float(pr["pr_froude"][b]) * math.sqrt(G * lam)
+    roll = roll_1dof(tab, ew["ew_heel"].values, lam, v_rel, float(pr["pr_inertia"][b]), float(pr["pr_b44"][b]),
+                     float(pr["pr_b44q"][b]), float(pr.attrs["pr_weight"]), phi0, dur, dt)
+    return 90.0 if np.isnan(roll[-1]) else float(np.nanmax(np.abs(roll[-keep:])))
+
+
 def parametric_roll_sea_states(ew: xr.Dataset, pr: xr.Dataset, lam: float) -> xr.DataArray:
     """Largest roll [degree] of the 1-DOF model with GZ on the passing wave
     (:func:`stabflow.criteria.sgisc.roll_1dof`) on each sea state's effective wave (lambda = L,
@@ -112,29 +137,12 @@ def parametric_roll_sea_states(ew: xr.Dataset, pr: xr.Dataset, lam: float) -> xr
 
     The GZ curves on the wave are interpolated linearly in height between the effective-wave
     table's heights (``ew_table_gz``)."""
-    from stabflow.criteria.sgisc import roll_1dof
-
-    heel = ew["ew_heel"].values
-    k = 2 * math.pi / lam
-    c = math.sqrt(G / k)
-    dur, dt, phi0 = float(pr.attrs["pr_duration"]), float(pr.attrs["pr_dt"]), float(pr.attrs["pr_phi0_deg"])
-    keep = int(round(0.25 * dur / dt))
     h = ew["ew_effective_height"]
-    heights, gz = ew["ew_height"].values, ew["ew_table_gz"].values
     out = np.full(h.shape, np.nan)
     for i, j in zip(*np.nonzero(np.isfinite(h.values) & (h.values <= BREAKING_STEEPNESS * lam))):
-        H = float(h.values[i, j])
-        m = min(max(int(np.searchsorted(heights, H)) - 1, 0), len(heights) - 2)
-        f = (H - heights[m]) / (heights[m + 1] - heights[m])
-        tab = (1.0 - f) * gz[m] + f * gz[m + 1]
-        worst = 0.0
-        for mu in pr["pr_heading"].values:
-            for b, fn in enumerate(pr["pr_froude"].values):
-                v_rel = c * math.cos(math.radians(float(mu))) - float(fn) * math.sqrt(G * lam)
-                roll = roll_1dof(tab, heel, lam, v_rel, float(pr["pr_inertia"][b]), float(pr["pr_b44"][b]),
-                                 float(pr["pr_b44q"][b]), float(pr.attrs["pr_weight"]), phi0, dur, dt)
-                worst = max(worst, 90.0 if np.isnan(roll[-1]) else float(np.nanmax(np.abs(roll[-keep:]))))
-        out[i, j] = worst
+        tab = _gz_at_height(ew, float(h.values[i, j]))
+        out[i, j] = max([0.0] + [_roll_amplitude(tab, ew, pr, lam, mu, b) for mu in pr["pr_heading"].values
+                                 for b in range(pr.sizes["pr_froude"])])
     return xr.DataArray(out, dims=h.dims, coords=h.coords, name="ew_roll_1dof")
 
 
@@ -168,10 +176,7 @@ def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, f
 
     Returns a Dataset: ``c2_roll`` (c2_heading, c2_froude, c2_height) [degree], ``c2_by_speed``
     (c2_heading, c2_froude), scalar ``c2``; attributes as named."""
-    from stabflow.criteria.sgisc import roll_1dof
-
-    heel = ew["ew_heel"].values
-    heights, gz = ew["ew_height"].values, ew["ew_table_gz"].values
+    heights = ew["ew_height"].values
     # the draft's heights up to the effective-wave table's top, and the top itself (the largest effective
     # wave, at most L/7), so that no sea state's amplitude is extrapolated
     hgrid = C2_HEIGHTS * lam
@@ -185,22 +190,13 @@ def parametric_c2(ew: xr.Dataset, pr: xr.Dataset, p: xr.DataArray, lam: float, f
     # the draft's head and following seas: a heading missing from the regular-wave cases is named, C2 NaN
     no_heads = [h for h in (0.0, 180.0) if not np.any(np.isclose(heads.astype(float), h))]
     roll = np.full((len(heads), len(fns), len(hgrid)), np.nan)
-    c = math.sqrt(G * lam / (2 * math.pi))
-    dur, dt, phi0 = float(pr.attrs["pr_duration"]), float(pr.attrs["pr_dt"]), float(pr.attrs["pr_phi0_deg"])
-    keep = int(round(0.25 * dur / dt))
     for m, H in enumerate(hgrid):
-        k = min(max(int(np.searchsorted(heights, H)) - 1, 0), len(heights) - 2)
-        f = (H - heights[k]) / (heights[k + 1] - heights[k])
-        tab = (1.0 - f) * gz[k] + f * gz[k + 1]
+        tab = _gz_at_height(ew, float(H))
         for a, mu in enumerate(heads):
             for v, fn in enumerate(fns):
                 b = have.get(round(float(fn), 10))
-                if b is None:
-                    continue
-                v_rel = c * math.cos(math.radians(float(mu))) - float(fn) * math.sqrt(G * lam)
-                r = roll_1dof(tab, heel, lam, v_rel, float(pr["pr_inertia"][b]), float(pr["pr_b44"][b]),
-                              float(pr["pr_b44q"][b]), float(pr.attrs["pr_weight"]), phi0, dur, dt)
-                roll[a, v, m] = 90.0 if np.isnan(r[-1]) else float(np.nanmax(np.abs(r[-keep:])))
+                if b is not None:
+                    roll[a, v, m] = _roll_amplitude(tab, ew, pr, lam, mu, b)
     heff = ew["ew_effective_height"].values
     occ = _occurs(p)
     use = occ & np.isfinite(heff) & (heff <= BREAKING_STEEPNESS * lam)

@@ -395,7 +395,7 @@ def parametric_c1(sec: Sections, volume: float, lcg: float, kg: float, gm0: floa
 def parametric_c1_row(c1: xr.Dataset, std: Standards, cases_source: str) -> Row:
     """Parametric rolling, level 2, first check: C1 against RPR0 (the draft's "less than RPR0": not
     vulnerable, read here as C1 <= RPR0 like every limit, within round-off; else the second check C2
-    decides, which stabflow does not compute). NOT EVALUATED while RPR0 and the wave cases are the
+    decides, :func:`stabflow.criteria.sea_states.parametric_c2`). NOT EVALUATED while RPR0 and the wave cases are the
     drafts'; with the speed requirement unevaluated C1 is an upper bound and no indicative verdict."""
     wc = std.get(C1_CASES)
     miss, drafted = [], []
@@ -413,7 +413,7 @@ def parametric_c1_row(c1: xr.Dataset, std: Standards, cases_source: str) -> Row:
                    "<=", missing=miss, drafted=drafted,
                    note=f"{n} waves ({cases_source}); R_PR {c1.attrs['c1_r_pr']:.3f}, T_phi {c1.attrs['c1_roll_period']:.2f} s, "
                         f"{int(np.nansum(c1['c1_fails']))} of {n} fail both; GM on the wave over {C1_CRESTS} crest positions; "
-                        "the second check C2 is not computed (its effective wave height is not defined in the draft read)")
+                        "where C1 exceeds RPR0 the second check C2 (its row) decides")
 
 
 def surf_riding_thresholds(ship, cfg: dict, L: float, radiation: xr.Dataset | None = None) -> xr.Dataset:

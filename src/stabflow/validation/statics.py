@@ -40,9 +40,9 @@ PUBLISHED = {
                  ("km", 9.493, 0.05, "m", _ARIFFIN),
                  ("gm", 1.938, 0.05, "m", _ARIFFIN)],
 }
-#: row names of the published quantities
-_PUBLISHED_NAMES = {"volume": "displaced volume", "mass": "displacement", "gm": "GMt", "km": "KMt"}
-_PUBLISHED_UNITS = {"volume": "m3", "mass": "t", "gm": "m", "km": "m"}
+#: row name and unit of each published quantity
+_PUBLISHED_LABELS = {"volume": ("displaced volume", "m3"), "mass": ("displacement", "t"), "gm": ("GMt", "m"),
+                     "km": ("KMt", "m")}
 
 
 #: largest heel [degree] of the navaltoolbox comparison: navaltoolbox departs from the exact mesh
@@ -119,8 +119,8 @@ def statics_checks(ship: Ship, hull: xr.Dataset, st: xr.Dataset) -> list[Check]:
     for quantity, ref, tol, unit, src in PUBLISHED.get(ship.name, []):
         value = {"volume": vol, "mass": float(st["mass"]) / 1000.0, "gm": float(st["gm"]), "km": float(st["gm"]) + kg}[quantity]
         dev = 100 * (value - ref) / ref if unit == "%" else value - ref
-        checks.append(Check(f"{_PUBLISHED_NAMES[quantity]} vs published {ref:g} {_PUBLISHED_UNITS[quantity]}", dev, tol, unit,
-                            src))
+        label, ref_unit = _PUBLISHED_LABELS[quantity]
+        checks.append(Check(f"{label} vs published {ref:g} {ref_unit}", dev, tol, unit, src))
     # station convergence: doubling the stations changes GZ by less than 0.5 % of GZmax
     ship2 = ship.modified(stations=2 * int(h["stations"]))
     st2 = compute_statics(ship2, build_hull(ship2))
