@@ -286,6 +286,36 @@ def test_line_table_phasor_recurrence_and_moving_points_against_direct_evaluatio
         assert np.max(np.abs(moving[i] - fixed[0]) / scale) < 1e-12
 
 
+def test_record_point_coefficients_shift_the_time_factors(trawler):
+    """A record's chunks (``wave_line``: equally spaced points, ``spacing`` given) take the points'
+    coefficients found once at the offsets j h and put the chunk's start, drift and the components'
+    phases into the time factors: against the coefficients found at the chunk's points (the general
+    path), with the pressure decay's columns, chunks starting 40 m apart, drifting at -1.3 and
+    2.1 m/s and starting at 0 and 3,000 s, to 1e-10 of each column's largest value; the offsets'
+    coefficients are kept for the count of points (at most ``OFFSET_TABLES`` counts)."""
+    from stabflow.waves import synthesis as syn
+
+    ship, sec, st, co, tabs, ab = trawler
+    model = build_six_dof(sec, st, co, ship.rho, 30.0, SPEED, Manoeuvring(foils=(RUDDER,), added_mass=ab),
+                          tables=tabs, dphi_dzdt=True)
+    rng = np.random.default_rng(11)
+    amp, w, ph = rng.uniform(0.1, 0.5, 30), np.linspace(0.4, 2.2, 30), rng.uniform(-np.pi, np.pi, 30)
+    lw = line_waves(model, (amp, w, ph))
+    assert lw.decay_coef.shape[1] > 0
+    h = 0.37
+    for start, drift, t0 in ((-20.0, -1.3, 0.0), (20.0, 2.1, 3000.0)):
+        xi = start + h * np.arange(90)
+        t = t0 + 0.25 * np.arange(9)
+        fast = lw.table(xi, t, drift=drift, uniform=True, spaced=True, spacing=h)
+        general = lw.table(xi, t, drift=drift)
+        scale = np.max(np.abs(general), axis=(0, 1))
+        assert np.max(np.abs(fast - general) / scale) < 1e-10
+    assert list(lw._offsets) == [(90, h, np.dtype(float).str)]
+    for n in range(10, 10 + syn.OFFSET_TABLES + 2):
+        lw.table(h * np.arange(n), np.zeros(1), spacing=h)
+    assert len(lw._offsets) == syn.OFFSET_TABLES
+
+
 def test_station_wave_on_a_moving_line_table(trawler):
     """A line table following a drift of -2.5 m/s along xi, covering only the hull and 3 m: the kernel
     reads it at M_XI0 + M_XI_RATE M_XI_TIME, so stations that drifted with it (3 s later) get eta

@@ -456,7 +456,7 @@ def wave_line(model: SixDof, waves, t0: float, nsteps: int, dt: float, centre: f
     h = 2 * np.pi / kmax / points_per_wavelength
     n = int(np.ceil(2 * reach / h)) + 1
     xi = centre - reach + h * np.arange(n)
-    tab = lw.table(xi, t_half, dtype, drift, spaced=True)
+    tab = lw.table(xi, t_half, dtype, drift, uniform=True, spaced=True, spacing=h)
     return np.ascontiguousarray(tab), float(xi[0]), float(h), 0
 
 

@@ -16,10 +16,11 @@ def _crossbeam_node(sin_beta):
 
 
 @njit(cache=True, nogil=True)
-def _trig_table(we, t0, dt, out, j0=0):
-    """Fill ``out`` (nt, 2 nc) with cos(we_n t_j) and sin(we_n t_j), t_j = t0 + (j0 + j) dt.
+def _trig_table(we, t0, dt, out, j0, shift):
+    """Fill ``out`` (nt, 2 nc) with cos(we_n t_j - shift_n) and sin(we_n t_j - shift_n), t_j = t0 +
+    (j0 + j) dt (``shift`` (nc,) [rad]: zeros for the plain time factors).
 
-    Each phasor exp(i we t) is advanced by the constant rotation exp(i we dt) (one complex
+    Each phasor exp(i (we t - shift)) is advanced by the constant rotation exp(i we dt) (one complex
     multiply instead of a cos and a sin) and reset to the exact value every 256 steps of the
     absolute index j0 + j (so a table built in blocks starting at multiples of 256 equals the
     whole table bit for bit). Rows are written contiguously (time outer, components inner).
@@ -33,7 +34,7 @@ def _trig_table(we, t0, dt, out, j0=0):
     for j in range(nt):
         if ((j0 + j) & 255) == 0 or j == 0:
             for n in range(nc):
-                ph = we[n] * (t0 + (j0 + j) * dt)
+                ph = we[n] * (t0 + (j0 + j) * dt) - shift[n]
                 cr[n] = np.cos(ph)
                 ci[n] = np.sin(ph)
         for n in range(nc):

@@ -31,6 +31,9 @@ from stabflow.waves._kernels import _crossbeam_node, _equally_spaced, _line_coef
 
 from stabflow.constants import G
 
+#: point-coefficient arrays a :class:`LineWaves` keeps (the oldest goes first)
+OFFSET_TABLES = 4
+
 #: memory of one block of time factors in :func:`_time_series_table` [bytes]
 TRIG_BLOCK_BYTES = 64 * 2**20
 
@@ -48,10 +51,11 @@ def _time_series_table(we, times, cols, dtype) -> np.ndarray:
     return _time_series_product(we, times, coef.reshape(2 * nc, npt * nq).astype(dtype), nq)
 
 
-def _time_series_product(we, times, coef, nq, spaced: bool = False) -> np.ndarray:
+def _time_series_product(we, times, coef, nq, spaced: bool = False, shift=None) -> np.ndarray:
     """The product of :func:`_time_series_table` with the coefficients ``coef`` (2 nc, npoints nq)
     already assembled (in the table's dtype) → (nt, npoints, nq); ``spaced``: the caller's times
-    are equally spaced by construction (not checked again)."""
+    are equally spaced by construction (not checked again); ``shift`` (nc,) [rad]: the time factors
+    are cos(we t - shift) and sin(we t - shift) (None: zeros)."""
     times = np.asarray(times, float)
     t0 = times[0] if len(times) else 0.0
     dt = times[1] - times[0] if len(times) > 1 else 0.0
@@ -60,6 +64,7 @@ def _time_series_product(we, times, coef, nq, spaced: bool = False) -> np.ndarra
     nc = len(we)
     npt = coef.shape[1] // nq
     dtype = coef.dtype
+    shift = np.zeros(nc) if shift is None else np.asarray(shift, float)
     out = np.empty((len(times), npt * nq), dtype=dtype)
     # in blocks of time rows (multiples of the phasor reset interval, so the values do not depend on
     # the block size): the time factors of thousands of components over a 3-hour record would take
@@ -69,7 +74,7 @@ def _time_series_product(we, times, coef, nq, spaced: bool = False) -> np.ndarra
     with one_blas_thread():
         for j0 in range(0, len(times), block):
             m = min(block, len(times) - j0)
-            _trig_table(we, t0, dt, trig[:m], j0)
+            _trig_table(we, t0, dt, trig[:m], j0, shift)
             np.matmul(trig[:m], coef, out=out[j0: j0 + m])
     return out.reshape(len(times), npt, nq)
 
@@ -395,6 +400,7 @@ class LineWaves:
         else:
             self.decay_coef = np.zeros((len(self.amp), 0))
             self.decay_weights = np.zeros((0 if decay is None else len(decay.total), 0))
+        self._offsets = {}  # the points' coefficients of equally spaced tables by (count, spacing, dtype)
 
     @property
     def columns(self) -> int:
@@ -402,22 +408,38 @@ class LineWaves:
         return 3 + 4 * self.decay_coef.shape[1]
 
     def table(self, xi, times, dtype=np.float64, drift: float = 0.0, uniform: bool | None = None,
-              spaced: bool = False) -> np.ndarray:
+              spaced: bool = False, spacing: float | None = None) -> np.ndarray:
         """(nt, npoints, columns) table of (eta, S, dS/dxi[, P_1, dP_1/dxi, Q_1, dQ_1/dxi, ...]) at the points ``xi`` [m]
         (moving along xi at ``drift`` [m/s]) at ``times`` [s], as :func:`line_wave_table`; ``uniform`` (points equally
         spaced; None: found here) and ``spaced`` (times equally spaced, not checked) spare a
-        caller who builds them so the checks."""
+        caller who builds them so the checks. ``spacing`` [m]: the points are xi[0] + j ``spacing`` (the
+        caller's construction, not checked; the 6-DOF records' chunks): their coefficients are then
+        the record's, found once for each point count and kept."""
         xi = np.asarray(xi, float)
         if uniform is None:
             uniform = _equally_spaced(xi, 1e-12)
         we = self.we - self.k * drift
         t_first = float(times[0]) if len(times) else 0.0
         nq = self.columns
-        coef = np.empty((2 * len(self.amp), nq * len(xi)), dtype=dtype)
-        # equally spaced points (the 6-DOF tables): phasor recurrence along the line, as in time
-        _line_coefficients(self.amp, self.k, self.phase - self.k * drift * t_first, xi, uniform, self.decay_coef, G,
-                           coef)
-        return _time_series_product(we, times, coef, nq, spaced=spaced)
+        phase = self.phase - self.k * drift * t_first
+        if spacing is None or len(xi) < 2:
+            coef = np.empty((2 * len(self.amp), nq * len(xi)), dtype=dtype)
+            _line_coefficients(self.amp, self.k, phase, xi, uniform, self.decay_coef, G, coef)
+            return _time_series_product(we, times, coef, nq, spaced=spaced)
+        # equally spaced points xi_0 + j h (the 6-DOF tables): a cos(k (xi_0 + j h) - we t + phase) =
+        # a cos(k j h - (we t - k xi_0 - phase)), so the points' coefficients at the offsets j h are
+        # the record's, found once for each (count, spacing), and the chunk's start, drift and the
+        # components' phases shift the time factors instead (nc values a chunk, not nc x npoints x columns)
+        key = (len(xi), float(spacing), np.dtype(dtype).str)
+        coef = self._offsets.get(key)
+        if coef is None:
+            coef = np.empty((2 * len(self.amp), nq * len(xi)), dtype=dtype)
+            _line_coefficients(self.amp, self.k, np.zeros_like(self.k), key[1] * np.arange(len(xi)), True,
+                               self.decay_coef, G, coef)
+            if len(self._offsets) >= OFFSET_TABLES:  # a record's chunks use one or two counts
+                self._offsets.pop(next(iter(self._offsets)))
+            self._offsets[key] = coef
+        return _time_series_product(we, times, coef, nq, spaced=spaced, shift=self.k * float(xi[0]) + phase)
 
 
 def line_wave_table(amp, omega, phase, xi, heading_deg, speed, times, dtype=np.float64,
