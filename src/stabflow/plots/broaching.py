@@ -113,15 +113,18 @@ def manoeuvres_figure(tracks: dict, zigzags: dict, path) -> None:
 def map_figure(ds: xr.Dataset, path) -> None:
     """Capsize and broach probability per record over wave heading x speed, each cell annotated with
     its count and 95 % interval."""
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     n = int(ds.attrs["map_records"])
+    nh, nv = ds.sizes["map_heading"], ds.sizes["map_speed"]
+    # each cell 0.85 in wide and 0.75 in high at least, so that its three lines stay inside it
+    fig, axes = plt.subplots(1, 2, figsize=(max(12.0, 2 * (0.85 * nh + 1.6)), max(4.8, 0.75 * nv + 1.8)))
     for ax, name in zip(axes, ("capsize", "broach")):
         p = ds[f"map_{name}_probability"].values
         im = ax.imshow(p.T, origin="lower", vmin=0, vmax=1, cmap="Reds", aspect="auto")
         for i in range(p.shape[0]):
             for j in range(p.shape[1]):
-                ax.text(i, j, f"{int(ds[f'map_{name}_count'][i, j])}/{n}\n[{float(ds[f'map_{name}_lower'][i, j]):.2f}, "
-                              f"{float(ds[f'map_{name}_upper'][i, j]):.2f}]", ha="center", va="center", fontsize=6)
+                lo, hi = float(ds[f"map_{name}_lower"][i, j]), float(ds[f"map_{name}_upper"][i, j])
+                ax.text(i, j, f"{int(ds[f'map_{name}_count'][i, j])}/{n}\n{lo:.2f}–\n{hi:.2f}", ha="center",
+                        va="center", fontsize=6.5, linespacing=1.1, color="white" if p[i, j] > 0.6 else "black")
         ax.set_xticks(range(p.shape[0]), [f"{h:g}" for h in ds.map_heading.values])
         ax.set_yticks(range(p.shape[1]), [f"{v:g}" for v in ds.map_speed.values])
         ax.set_xlabel("wave heading off the stern [°] (0 following)")
