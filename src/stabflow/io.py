@@ -91,7 +91,8 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     "hull_volume": ("m3", "total enclosed hull volume to the deck"),
     # ensembles (roll and pitch statistics in degree, heave in m)
     "record": ("1", "record index (with the master seed, defines the record's seaway)"),
-    "steps": ("1", "last RK4 step of the record (fewer than planned if it capsized)"),
+    "steps": ("1", "RK4 steps of the record in its statistics, after its warm-up (fewer than planned if it capsized)"),
+    "statistics_start": ("s", "time the record's statistics start at: the end of its warm-up (0: none, or a capsize inside it)"),
     "capsized": ("1", "1 if roll passed 90 degree in the record"),
     "capsize_time": ("s", "time of capsize in the record (NaN if none)"),
     "roll_max": ("degree", "largest absolute roll in the record"),

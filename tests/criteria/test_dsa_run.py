@@ -56,6 +56,55 @@ def test_cell_grid_probabilities():
     assert (g.probability > 0).all()
 
 
+@pytest.mark.parametrize("headings, span, weights", [
+    ([60.0, 90.0, 120.0], (45.0, 135.0), [1 / 3, 1 / 3, 1 / 3]),
+    ([0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0], (0.0, 180.0), [1 / 12] + [1 / 6] * 5 + [1 / 12]),
+    ([0.0, 90.0], (0.0, 135.0), [1 / 3, 2 / 3]),
+    ([90.0, 180.0], (45.0, 180.0), [2 / 3, 1 / 3]),
+    ([90.0], (90.0, 90.0), [1.0])])
+def test_headings_stand_for_a_uniform_heading_over_their_span(headings, span, weights):
+    """Each equally spaced heading stands for an equal interval of a uniform heading around it (0 and
+    180 deg for half of one): the weights are each heading's share of the span it covers, and the
+    span is written where the probabilities are described; unequally spaced or unordered headings
+    are an error naming the config field."""
+    from stabflow import StabflowError
+
+    assert dsa_run.heading_span(headings) == span
+    g = dsa_run.cell_grid(Standards(), headings, [5.0])
+    per = g.probability.groupby("heading").sum().values / float(g.probability.sum())
+    np.testing.assert_allclose(per, weights, rtol=1e-12)
+    if len(headings) > 1:  # the shares are the intervals' lengths over the span
+        d = headings[1] - headings[0]
+        lengths = [min(h + d / 2, span[1]) - max(h - d / 2, span[0]) for h in headings]
+        np.testing.assert_allclose(per, np.array(lengths) / (span[1] - span[0]), rtol=1e-12)
+    assert f"{span[0]:g}-{span[1]:g} deg" in g.attrs["probabilities"]
+    for bad in ([0.0, 90.0, 120.0], [120.0, 90.0, 60.0]):
+        with pytest.raises(StabflowError, match="dsa.headings_deg"):
+            dsa_run.cell_grid(Standards(), bad, [5.0])
+
+
+def test_cells_are_simulated_after_a_warmup_of_roll_periods(monkeypatch):
+    """Every run of a cell (screening, simulation, recheck) is an engine condition with the warm-up
+    of ``warmup_roll_periods`` natural roll periods of the cell's model (default 10, from the
+    config schema), so its records' transient from rest is left out (the engine's warmup_s,
+    tested in tests/statistics)."""
+    seen = []
+    real = dsa_run.run_cell
+
+    def spy(model, cond):
+        seen.append((cond["warmup_s"], model.roll_period))
+        return real(model, cond)
+
+    monkeypatch.setattr(dsa_run, "run_cell", spy)
+    cfg = dict(CFG, hs_max=2.5, warmup_roll_periods=3.0)
+    cells = dsa_run.assess_cells(load_ship(SHIPS / "barge.yaml"), cfg, 40.0, 100.0, crew_z=10.0)
+    assert seen and all(w == pytest.approx(3.0 * t, rel=1e-12) and w > 0 for w, t in seen)
+    assert cells.attrs["warmup_roll_periods"] == 3.0 and "3 natural roll periods" in cells.attrs["warmup"]
+    seen.clear()
+    dsa_run.assess_cells(load_ship(SHIPS / "barge.yaml"), dict(CFG, hs_max=2.5), 40.0, 100.0, crew_z=10.0)
+    assert all(w == pytest.approx(10.0 * t, rel=1e-12) for w, t in seen)
+
+
 CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan, "lwl": 100.0, "ea_crew_height": 10.0})
 
 
@@ -111,14 +160,15 @@ def test_long_term_rate_and_row(small):
     assert "3.2.1.2" in ds.attrs["lateral_acceleration_source"]
     # the screening checked by simulating the screened cells as the others: every screened cell and
     # no other was re-simulated; none of them failed nor rolled beyond half the failure angle; the
-    # longer rechecks of the likelier beam-sea cells (Hs 1.5 m, Tz 6.5-8.5 s) fit a roll tail above
-    # the Gaussian bound: those 3 cells are overruled and enter the rate as extrapolated
+    # longer rechecks of two likelier beam-sea cells (Hs 2.5 m, Tz 6.5 and 7.5 s; with the records'
+    # warm-up since 2026-12-07: before it, three cells of Hs 1.5 m) fit a roll tail above the
+    # Gaussian bound: those cells are overruled and enter the rate as extrapolated
     m = ds.method.values.astype(str)
     rc = ds.recheck_method.values.astype(str)
     over = ds.screen_overruled.values.astype(bool)
     np.testing.assert_array_equal(rc != "none", (m == "screened") | over)
     assert ds.attrs["screen_recheck_cells"] == int((rc != "none").sum()) > 0
-    assert over.sum() == ds.attrs["screen_overruled_cells"] == 3
+    assert over.sum() == ds.attrs["screen_overruled_cells"] == 2
     assert (rc[over] == "extrapolated").all() and (m[over] == "extrapolated").all()
     assert (ds.cell_rate.values[over] > ds.recheck_rate.values[over] * 0.999).all()
     assert ds.attrs["screen_recheck_failures"] == 0 and (ds.recheck_failures.values[rc == "counted"] == 0).all()
@@ -219,8 +269,11 @@ def test_failures_are_the_union_of_roll_and_acceleration_crossings():
 
 def test_a_lower_acceleration_limit_adds_failures(small, tmp_path):
     """The same small assessment with a lateral-acceleration limit of 1.5 m/s2 (an override) instead
-    of 9.81: every cell simulated in both runs counts at least as many failures, with the same roll
-    (same seeds); the cells' acceleration sigma grows with the sea; the row names the limit."""
+    of 9.81: with the same roll (same seeds), every cell simulated in both runs that counted failures
+    still counts some, and more are counted in all (not necessarily in every cell: an acceleration
+    crossing between two roll failures further apart than the declustering window joins them into one,
+    as in one barge cell, Hs 4.5 m, Tz 7.5 s, beam seas: 2 -> 1); the cells' acceleration sigma grows
+    with the sea; the row names the limit."""
     from stabflow.criteria.dsa_run import ACC_KEY
 
     ship, base = small
@@ -235,7 +288,7 @@ def test_a_lower_acceleration_limit_adds_failures(small, tmp_path):
     assert sim.any()
     np.testing.assert_array_equal(low.roll_sigma.values[sim], base.roll_sigma.values[sim])
     k0, k1 = base.failures.values[sim & (m0 == "counted")], low.failures.values[sim & (m0 == "counted")]
-    assert (k1 >= k0).all() and (k1 > k0).any()
+    assert ((k1 >= 1) | (k0 == 0)).all() and (k1 > k0).any() and k1.sum() > k0.sum()
     assert float(low.rate) > float(base.rate)
     i, j = int(np.argmin(low.hs.values)), int(np.argmax(low.hs.values))
     assert low.lateral_sigma.values[j] > low.lateral_sigma.values[i] > 0

@@ -335,3 +335,53 @@ def test_merge_keeps_the_first_shards_encoding_of_the_concatenated_coordinates(m
     for c in ("record", "sample"):
         assert out[c].encoding.get("dtype") == np.dtype("int32") and out[c].encoding.get("zlib"), c
     assert list(out["record"].values) == list(range(6))
+
+
+def test_warmup_is_left_out_of_the_statistics_and_the_exposure():
+    """A condition with ``warmup_s``: each record runs warm-up + duration from rest and its statistics
+    (moments, maximum, crossings with their times and step indices, peaks, lateral acceleration)
+    and exposure are those of the same record's states after the warm-up (regenerated); the first
+    records without warm-up are the same wave records, so their statistics differ. A record that
+    ends inside its warm-up keeps it (no capsize left out)."""
+    from stabflow.dynamics.rigid_body import lateral_specific_force
+    from stabflow.statistics.ensemble import record_statistics
+
+    h = 6.0
+    cond = dict(load_pipeline(ROOT / "config" / "test.yaml")["ensembles"][0], name="barge_beam", duration=300.0,
+                warmup_s=100.0, samples=0, thresholds_deg=[2.0],
+                lateral_acceleration={"height": h, "limits": [1.0], "peak_floor": 0.5})
+    cond["sea"] = dict(cond["sea"], hs=2.0)
+    m = build_model(load_ship(SHIPS / "barge.yaml"), cond)
+    assert (m.nwarm, m.nsteps) == (200, 800)
+    ens = merge([run_shard(m, range(0, 3), progress=False)])
+    assert int(ens["capsize_count"]) == 0
+    assert float(ens["exposure_hours"]) == pytest.approx(3 * 300.0 / 3600.0)
+    assert np.all(ens["statistics_start"].values == 100.0) and ens.attrs["warmup_s"] == 100.0
+    thr = float(ens["threshold"][0])
+    rolls = []
+    for r in range(3):
+        st, last = simulate_record(m, r)
+        assert last == 800
+        roll = np.degrees(st[200:last + 1, S_ROLL])
+        rate = np.degrees(st[200:last + 1, 3 + S_ROLL])
+        t = np.arange(200, last + 1) * m.dt
+        rolls.append(roll)
+        assert float(ens["roll_max"].sel(record=r)) == np.abs(roll).max()
+        tc, _, nc = crossings(t, roll, rate, thr)
+        sel = (ens["crossing_record"] == r) & (ens["crossing_threshold"] == 0) & (ens["crossing_side"] == 1)
+        np.testing.assert_array_equal(ens["crossing_time"].values[sel], tc)
+        np.testing.assert_array_equal(ens["crossing_step"].values[sel], nc + 200)
+        a = lateral_specific_force(st[: last + 1], m.dt, h)[200:]
+        assert float(ens["lateral_max"].sel(record=r)) == np.abs(a).max()
+    assert int((ens["crossing_record"] >= 0).sum()) > 0  # the test exercises crossings
+    assert np.all(ens["peak_time"].values >= 100.0) and np.all(ens["crossing_time"].values >= 100.0)
+    allroll = np.concatenate(rolls)
+    assert float(ens["roll_std"]) == pytest.approx(allroll.std(), rel=1e-9)
+    cold = merge([run_shard(build_model(load_ship(SHIPS / "barge.yaml"), dict(cond, warmup_s=0.0)), range(0, 3),
+                            progress=False)])
+    assert float(cold["roll_std"]) != pytest.approx(float(ens["roll_std"]), rel=1e-3)
+    # a record that ended inside its warm-up (a capsize at step 150) keeps it
+    st, _ = simulate_record(m, 0)
+    kept = record_statistics(m, 0, st, 150, np.zeros(m.nsteps + 1))
+    assert (kept["steps"], kept["start"], kept["capsized"]) == (150, 0.0, 1)
+    assert kept["roll_max"] == np.abs(np.degrees(st[:151, S_ROLL])).max()

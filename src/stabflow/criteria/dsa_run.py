@@ -2,8 +2,9 @@
 x headings x speeds, screened cheaply, simulated where it matters, aggregated by :mod:`.dsa`.
 
 A cell is (Hs, Tz, heading, speed) with probability P(Hs, Tz) P(heading) P(speed): the IACS Rec. 34
-North Atlantic table (rows read, ``resources/criteria/iacs_rec34_scatter.yaml``), a uniform heading on
-the circle (0 and 180 degree at half weight) and equally likely speeds (stabflow's choice; the
+North Atlantic table (rows read, ``resources/criteria/iacs_rec34_scatter.yaml``), a uniform heading over
+the span the equally spaced headings cover (each heading an equal interval around it; 0 and 180 degree
+half of one: :func:`heading_span`) and equally likely speeds (stabflow's choice; the
 circular's operational assumptions were not read). The sea
 of a cell is the two-parameter Bretschneider spectrum at (Hs, Tz), long-crested, through the
 ensemble engine's seaway and 3-DOF model (:mod:`stabflow.statistics.ensemble`).
@@ -15,6 +16,10 @@ readable source gave that limit: without it (an override supplies it) the accele
 named as missing in the results and the row gets no verdict, never one on roll alone.
 
 Per cell, in order:
+
+Every record starts from rest and is simulated for ``warmup_roll_periods`` natural roll periods
+before its ``duration`` is counted: the transient is left out of the failures, the exposure and
+the statistics (the ensemble engine's ``warmup_s``; a record that capsizes inside it keeps it).
 
 1. *Screening run*: ``screen.records`` records of ``screen.duration``. The Gaussian (Rice) rate of
    |roll| above the failure angle with the run's roll sigma inflated by ``screen.sigma_factor``,
@@ -125,8 +130,9 @@ def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = No
         ok &= hs <= hs_max
     h = np.asarray(headings_deg, float)
     v = np.asarray(speeds_kn, float)
-    # headings stand for a uniform heading on the circle, port and starboard mirrored: 0 and 180 deg
-    # each stand for half as much of it as the headings between (trapezoid weights)
+    lo, hi = heading_span(h)
+    # each heading stands for an equal interval of a uniform heading around it, port and starboard
+    # mirrored: 0 and 180 deg, at the ends of the half circle, for half an interval (trapezoid weights)
     wh = np.where((h == 0.0) | (h == 180.0), 0.5, 1.0)
     wh = wh / wh.sum()
     rows = [(a, b, m, u, c * w / len(v)) for a, b, c in zip(hs[ok], tz[ok], p[ok]) for m, w in zip(h, wh) for u in v]
@@ -137,9 +143,28 @@ def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = No
     ds.attrs.update(scatter_covered_fraction=float(P.attrs.get("covered_fraction", np.nan)),
                     probability_used=float(np.nansum(p[ok])),
                     scatter_source=str(std.raw["iacs_rec34_scatter"]["meta"]["document"]),
-                    probabilities="P(Hs, Tz) from the scatter table x heading weight x 1/speeds (a uniform heading "
-                                  "on the circle, 0 and 180 deg at half weight; speeds equally likely: stabflow's choice)")
+                    heading_span=f"{lo:g}-{hi:g} deg",
+                    probabilities=f"P(Hs, Tz) from the scatter table x heading weight x 1/speeds (a uniform heading "
+                                  f"over {lo:g}-{hi:g} deg, port and starboard mirrored, each heading standing for an "
+                                  "equal interval around it, 0 and 180 deg for half of one; speeds equally likely: "
+                                  "stabflow's choice)")
     return ds
+
+
+def heading_span(headings_deg) -> tuple[float, float]:
+    """(lowest, highest) heading [degree] of the uniform heading that equally spaced, increasing
+    ``headings_deg`` stand for: each the interval of one spacing around it, clipped to 0-180 (one
+    heading: itself). Raises StabflowError (naming ``dsa.headings_deg``) if they are not."""
+    from stabflow import StabflowError
+
+    h = np.asarray(headings_deg, float)
+    if len(h) == 1:
+        return float(h[0]), float(h[0])
+    d = np.diff(h)
+    if np.any(d <= 0) or not np.allclose(d, d[0], rtol=0, atol=1e-9):
+        raise StabflowError(f"dsa.headings_deg: {list(map(float, h))} are not equally spaced in increasing order: each "
+                            "heading stands for an equal interval of a uniform heading around it")
+    return max(0.0, float(h[0] - 0.5 * d[0])), min(180.0, float(h[-1] + 0.5 * d[0]))
 
 
 def cell_seed(master: int, *indices: int) -> int:
@@ -149,13 +174,16 @@ def cell_seed(master: int, *indices: int) -> int:
 
 
 def condition(cfg: dict, ship: str, hs: float, tz: float, heading: float, speed_kn: float, records: int,
-              duration: float, seed: int, phi_f: float, floor: float, lateral: dict | None = None) -> dict:
+              duration: float, seed: int, phi_f: float, floor: float, lateral: dict | None = None,
+              warmup: float = 0.0) -> dict:
     """An ensemble condition (the ensembles schema, defaults filled) for one cell; ``lateral`` the
-    engine's ``lateral_acceleration`` settings (crew height above G, limits, peak floor) or None."""
+    engine's ``lateral_acceleration`` settings (crew height above G, limits, peak floor) or None;
+    ``warmup`` [s] simulated from rest before each record's ``duration`` is counted."""
     tp = tz / dsa.tz_over_tm()
     c = {"name": "dsa", "ship": ship, "speed_kn": float(speed_kn), "heading_deg": float(heading),
          "sea": {"spectrum": "bretschneider", "hs": float(hs), "tp": float(tp), "n_components": int(cfg["n_components"])},
-         "records": int(records), "duration": float(duration), "dt": float(cfg["dt"]), "seed": int(seed),
+         "records": int(records), "duration": float(duration), "warmup_s": float(warmup), "dt": float(cfg["dt"]),
+         "seed": int(seed),
          "stations": int(cfg["stations"]), "thresholds_deg": [float(phi_f)], "peak_floor_deg": float(floor),
          "samples": 0, "max_lag": float(cfg["max_lag"])}
     if cfg.get("dynamics"):
@@ -356,6 +384,12 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     if acc_lim is not None:
         lateral = {"height": crew_z - float(next(iter(models.values())).st["kg"]), "limits": [acc_lim],
                    "peak_floor": 0.0}
+    # every record starts from rest: its first warmup_roll_periods natural roll periods (the transient,
+    # in which roll has not reached its stationary variance) are simulated and left out of the cell's
+    # failures, exposure and statistics (the engine's warmup_s)
+    periods = float(cfg.get("warmup_roll_periods", schema("config")["properties"]["dsa"]["properties"]
+                            ["warmup_roll_periods"]["default"]))
+    warm = {key: periods * mo.roll_period for key, mo in models.items()}
     t_build = time.process_time() - t0
     n = cells.sizes["cell"]
     method = np.empty(n, object)
@@ -420,7 +454,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
         es = None
         if gaussian:
             cs = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, scr["records"], scr["duration"],
-                           cell_seed(cfg["seed"], *ix, 0), phi_f, 1.0, lateral)
+                           cell_seed(cfg["seed"], *ix, 0), phi_f, 1.0, lateral, warm[key])
             es = run_cell(model, cs)
             t_screen += time.process_time() - a
             s = float(es["roll_std"])
@@ -452,7 +486,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                     lat = None if lateral is None else dict(lateral, peak_floor=2.0 * asig[i])
                     rc_n[i] = recheck_records(float(c.probability), p_mean, cfg["records"], allocation)
                     cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, rc_n[i], cfg["duration"],
-                                   cell_seed(cfg["seed"], *ix, 2), phi_f, max(0.5, 2.0 * s), lat)
+                                   cell_seed(cfg["seed"], *ix, 2), phi_f, max(0.5, 2.0 * s), lat, warm[key])
                     rc_method[i], rc_k[i], rc_T[i], rc_r[i], rc_lo[i], rc_hi[i], used, per, ens = simulate(model, cf, s,
                                                                                                           lat)
                     rc_max[i] = float(ens["roll_max"].max())
@@ -474,7 +508,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
         s = float(es["roll_std"]) if es is not None else 1.0
         lat = None if lateral is None else dict(lateral, peak_floor=2.0 * asig[i] if np.isfinite(asig[i]) else 0.0)
         cf = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, cfg["records"], cfg["duration"],
-                       cell_seed(cfg["seed"], *ix, 1), phi_f, max(0.5, 2.0 * s), lat)
+                       cell_seed(cfg["seed"], *ix, 1), phi_f, max(0.5, 2.0 * s), lat, warm[key])
         method[i], k[i], T[i], r[i], lo[i], hi[i], thr[i], per, ens = simulate(
             model if gaussian else with_initial_heel(model, float(cfg["initial_heel_deg"])), cf, s, lat)
         t_sim += time.process_time() - a
@@ -528,7 +562,12 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     if lateral is not None:
         cells.attrs.update(lateral_acceleration_limit=acc_lim, crew_height_above_g=lateral["height"],
                            lateral_acceleration_source=std.get(ACC_KEY).cite())
-    cells.attrs.update(parametric_cells=int(resonant.sum()), dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))))
+    cells.attrs.update(parametric_cells=int(resonant.sum()), dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))),
+                       warmup_roll_periods=periods,
+                       warmup_s=float(np.mean(list(warm.values()))),
+                       warmup=f"each record simulated from rest for {periods:g} natural roll "
+                              f"periods ({float(np.mean(list(warm.values()))):.1f} s) before its failures, exposure and "
+                              "statistics are counted (a record that capsizes inside it keeps it)")
     cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
                        count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g}"
@@ -611,7 +650,8 @@ def assess_dsa(ship: Ship, crit: xr.Dataset, cfg: dict, hydro: xr.Dataset | None
                   "SGISC direct stability assessment", value, "1/year", standard, "<=",
                   note=f"estimate {est:.4g} per year, interval [{lo:.4g}, {hi:.4g}]; failure angle {phi_f:.1f} deg "
                        f"({governs}); the cells assessed hold {100 * cells.attrs['probability_used']:.2f} % of the "
-                       "scatter table's probability; a year at sea in the Rec. 34 North Atlantic, uniform heading, "
+                       f"scatter table's probability; a year at sea in the Rec. 34 North Atlantic, uniform heading "
+                       f"over {cells.attrs['heading_span']}, "
                        "equally likely speeds (stabflow's operational assumptions)",
                   missing=missing)
     out.encoding.update(cells.encoding)

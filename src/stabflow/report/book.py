@@ -421,6 +421,8 @@ def _dsa_data(name: str, results: Path, figdir: Path) -> dict | None:
             "acc_source": str(a.get("lateral_acceleration_source", "")),
             "seconds": _benchmark_seconds(results, f"dsa/{name}.tsv"),
             "headings": sorted(set(float(x) for x in d.heading.values)),
+            "heading_span": str(a.get("heading_span", "0-180 deg")),
+            "warmup": str(a.get("warmup", "none: the records were counted from rest (results before 2026-12-07)")),
             "speeds": sorted(set(float(x) for x in d.speed_kn.values)),
             "map": _copy(results / "criteria" / f"{name}_dsa_map.png", figdir),
             "polar": _copy(results / "criteria" / f"{name}_dsa_polar.png", figdir)}

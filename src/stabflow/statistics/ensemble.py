@@ -71,8 +71,15 @@ class Model:
         return float(self.cond["dt"])
 
     @property
+    def nwarm(self) -> int:
+        """Steps of the warm-up (``warmup_s``): the records start from rest, and their first ``nwarm``
+        steps, the start's transient, are left out of the statistics and the exposure."""
+        return int(round(float(self.cond.get("warmup_s", 0.0)) / self.dt))
+
+    @property
     def nsteps(self) -> int:
-        return int(round(self.cond["duration"] / self.dt))
+        """Steps of a record: the warm-up and then ``duration``."""
+        return self.nwarm + int(round(self.cond["duration"] / self.dt))
 
     @property
     def speed(self) -> float:
@@ -252,16 +259,23 @@ def bins(cond: dict) -> dict[str, np.ndarray]:
 
 
 def record_statistics(model: Model, record: int, states: np.ndarray, last: int, wave_mid: np.ndarray) -> dict:
-    """Everything kept from one record (``states`` (nsteps + 1, N_STATE), valid up to ``last``)."""
+    """Everything kept from one record (``states`` (nsteps + 1, N_STATE), valid up to ``last``).
+
+    The warm-up's steps (``model.nwarm``) are left out of every statistic and of the exposure
+    (``steps``: the steps counted, ``start``: the time they start at [s]); times and step indices
+    stay those of the record. A record that ends inside its warm-up (a capsize) keeps it, so that
+    no capsize is left out of the counts."""
     cond = model.cond
     n = last + 1
+    w = model.nwarm if last > model.nwarm else 0
     t = np.arange(n) * model.dt
     h = states[:n, S_Z] - model.s0[S_Z]
     roll = np.degrees(states[:n, S_ROLL])
     pitch = np.degrees(states[:n, S_PITCH] - model.s0[S_PITCH])
     rate = np.degrees(states[:n, S_RATE + S_ROLL])
+    tw, h, roll, pitch, rate = t[w:], h[w:], roll[w:], pitch[w:], rate[w:]
     series = {"heave": h, "roll": roll, "pitch": pitch}
-    out = {"steps": last, "capsized": int(last < model.nsteps),
+    out = {"steps": last - w, "start": w * model.dt, "capsized": int(last < model.nsteps),
            "capsize_time": float(t[-1]) if last < model.nsteps else np.nan,
            "roll_max": float(np.abs(roll).max()),
            "moments": np.array([[np.sum(s**k) for k in range(1, 5)] for s in series.values()])}
@@ -270,16 +284,16 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     ev = []
     for j, thr in enumerate(cond["thresholds_deg"]):
         for side in (1, -1):
-            tc, rc, nc = crossings(t, roll, rate, side * thr, up=side > 0)
-            ev.append(np.column_stack([np.full(len(tc), j), np.full(len(tc), side), tc, rc, nc]))
+            tc, rc, nc = crossings(tw, roll, rate, side * thr, up=side > 0)
+            ev.append(np.column_stack([np.full(len(tc), j), np.full(len(tc), side), tc, rc, nc + w]))
     out["crossings"] = np.concatenate(ev) if ev else np.zeros((0, 5))
     floor = cond["peak_floor_deg"]
-    tp, vp = local_peaks(t, roll, floor)
-    tm, vm = local_peaks(t, -roll, floor)
+    tp, vp = local_peaks(tw, roll, floor)
+    tm, vm = local_peaks(tw, -roll, floor)
     order = np.argsort(np.concatenate([tp, tm]), kind="stable")
     out["peaks"] = np.column_stack([np.concatenate([tp, tm]), np.concatenate([vp, -vm])])[order]
     env = envelope(roll)
-    te, ve = local_peaks(t, env, floor)
+    te, ve = local_peaks(tw, env, floor)
     out["envelope_peaks"] = np.column_stack([te, ve])
     # autocovariance sums (zero-padded FFT) and Welch spectra, for records long enough
     maxlag = int(round(cond["max_lag"] / model.dt))
@@ -290,11 +304,11 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     cnt = np.maximum(len(x) - np.arange(maxlag + 1), 0)
     out["acov"] = np.where(cnt > 0, acov, 0.0)
     out["acov_n"] = cnt
-    out["psd"] = welch_psd(np.array([wave_mid[:n], h, roll, pitch]), model.dt) if n >= SPECTRUM_SEGMENT else None
+    out["psd"] = welch_psd(np.array([wave_mid[w:n], h, roll, pitch]), model.dt) if len(tw) >= SPECTRUM_SEGMENT else None
     la = cond.get("lateral_acceleration")
     if la:
-        out["lateral"] = lateral_statistics(t, lateral_specific_force(states[:n], model.dt, float(la["height"]),
-                                                                        float(model.p[P_G])), la)
+        out["lateral"] = lateral_statistics(tw, lateral_specific_force(states[:n], model.dt, float(la["height"]),
+                                                                         float(model.p[P_G]))[w:], la)
     return out
 
 
@@ -333,10 +347,11 @@ def six_dof_events(model: Model, states: np.ndarray, last: int) -> dict:
 
     cond = model.cond
     status = K6.CAPSIZED if last < model.nsteps else K6.OK
-    ev = record_events(six_dof_dataset(model.six, states, model.dt, status), broach_deg=float(cond["broach_deg"]),
+    w = model.nwarm if last > model.nwarm else 0  # as record_statistics: the warm-up left out
+    ev = record_events(six_dof_dataset(model.six, states[w:], model.dt, status), broach_deg=float(cond["broach_deg"]),
                        celerity=G / model.sea.modal_frequency, surf_tolerance=float(cond["surf_tolerance"]),
                        surf_min_s=float(cond["surf_min_s"]), heading_deg=float(cond["heading_deg"]))
-    return {"broached": ev["broach"], "broach_time": ev["broach_time"] if ev["broach"] else np.nan,
+    return {"broached": ev["broach"], "broach_time": w * model.dt + ev["broach_time"] if ev["broach"] else np.nan,
             "surf_riding": ev["surf_riding"]}
 
 
@@ -403,6 +418,7 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
     # re-merges every variable: ~30 ms per one-record shard)
     var = {name: xr.Variable(*dv) for name, dv in {
         "steps": ("record", np.array([p["steps"] for p in per], np.int64)),
+        "statistics_start": ("record", np.array([p["start"] for p in per])),
         "capsized": ("record", np.array([p["capsized"] for p in per], np.int8)),
         "capsize_time": ("record", np.array([p["capsize_time"] for p in per])),
         "roll_max": ("record", np.array([p["roll_max"] for p in per])),
@@ -481,6 +497,7 @@ def condition_attrs(model: Model) -> dict:
             "tp": model.sea.tp if model.sea.tp is not None else -1.0, "n_components": model.sea.n_components,
             "discretisation": model.sea.method, "randomise": int(model.sea.randomise),
             "speed_kn": float(c["speed_kn"]), "heading_deg": float(c["heading_deg"]), "duration": float(c["duration"]),
+            "warmup_s": model.nwarm * model.dt,
             "dt": model.dt, "seed": int(c["seed"]), "stations": len(model.sec.x), "kg": float(model.st["kg"]),
             "dof": int(c.get("dof", 3)), "model": str(c.get("model", "volume")),
             "gm": float(model.st["gm"]), "roll_period": model.roll_period, "diffraction": diffraction_label(model)}
@@ -504,7 +521,7 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     mean response spectra, exposure time, capsize count and rate."""
     shards = sorted(shards, key=lambda d: int(d["record"][0]) if d.sizes["record"] else 0)
     first = shards[0].variables
-    rec_vars = ["steps", "capsized", "capsize_time", "roll_max", "moment_sums"]
+    rec_vars = ["steps", "statistics_start", "capsized", "capsize_time", "roll_max", "moment_sums"]
     rec_vars += [v for v in ("broached", "broach_time", "surf_riding", "lateral_max", "lateral_sum", "lateral_sum_squares",
                              "lateral_zero_upcrossings") if v in first]
     ev = {"crossing": [v for v in shards[0].data_vars if v.startswith("crossing_")],
