@@ -61,12 +61,14 @@ def test_cell_grid_probabilities():
     ([0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0], (0.0, 180.0), [1 / 12] + [1 / 6] * 5 + [1 / 12]),
     ([0.0, 90.0], (0.0, 135.0), [1 / 3, 2 / 3]),
     ([90.0, 180.0], (45.0, 180.0), [2 / 3, 1 / 3]),
-    ([90.0], (90.0, 90.0), [1.0])])
+    ([90.0], (90.0, 90.0), [1.0]),
+    ([20.0, 90.0, 160.0], (0.0, 180.0), [55 / 180, 70 / 180, 55 / 180])])
 def test_headings_stand_for_a_uniform_heading_over_their_span(headings, span, weights):
-    """Each equally spaced heading stands for an equal interval of a uniform heading around it (0 and
-    180 deg for half of one): the weights are each heading's share of the span it covers, and the
-    span is written where the probabilities are described; unequally spaced or unordered headings
-    are an error naming the config field."""
+    """Each equally spaced heading stands for the interval of one spacing around it, clipped to 0-180
+    deg (0 and 180 deg: half of one): the weights are those intervals' shares of the span (a first
+    heading nearer 0 than half a spacing weighs less), and the span is written where the
+    probabilities are described; unequally spaced or unordered headings are an error naming the
+    config field."""
     from stabflow import StabflowError
 
     assert dsa_run.heading_span(headings) == span
@@ -100,9 +102,36 @@ def test_cells_are_simulated_after_a_warmup_of_roll_periods(monkeypatch):
     cells = dsa_run.assess_cells(load_ship(SHIPS / "barge.yaml"), cfg, 40.0, 100.0, crew_z=10.0)
     assert seen and all(w == pytest.approx(3.0 * t, rel=1e-12) and w > 0 for w, t in seen)
     assert cells.attrs["warmup_roll_periods"] == 3.0 and "3 natural roll periods" in cells.attrs["warmup"]
+    assert len(seen) >= cells.sizes["cell"]  # a run per cell at least (screening or simulation)
     seen.clear()
     dsa_run.assess_cells(load_ship(SHIPS / "barge.yaml"), dict(CFG, hs_max=2.5), 40.0, 100.0, crew_z=10.0)
-    assert all(w == pytest.approx(10.0 * t, rel=1e-12) for w, t in seen)
+    assert seen and all(w == pytest.approx(10.0 * t, rel=1e-12) for w, t in seen)
+
+
+def test_a_cell_whose_records_all_capsize_in_their_warmup_is_counted_from_rest(monkeypatch):
+    """A simulated cell whose every record is lost in its warm-up (made so here: its runs with a
+    warm-up report no exposure) is run again from rest, counted so and flagged (warmup_fallback), its
+    lost records noted (warmup_lost); the other cells are untouched."""
+    real = dsa_run.run_cell
+    runs = []
+
+    def all_lost(model, cond):
+        ens = real(model, cond)
+        runs.append(cond["warmup_s"])
+        if cond["warmup_s"] > 0 and cond["heading_deg"] == 180.0 and cond["sea"]["hs"] == 2.5:
+            ens = ens.copy()
+            ens["exposure_hours"] = 0.0 * ens["exposure_hours"]
+            ens["warmup_lost_count"] = ens["warmup_lost_count"] * 0 + cond["records"]
+        return ens
+
+    monkeypatch.setattr(dsa_run, "run_cell", all_lost)
+    cells = dsa_run.assess_cells(load_ship(SHIPS / "barge.yaml"), dict(CFG, hs_max=2.5), 40.0, 100.0, crew_z=10.0)
+    hit = (cells.heading.values == 180.0) & (cells.hs.values == 2.5)
+    assert hit.any() and 0.0 in runs
+    np.testing.assert_array_equal(cells.warmup_fallback.values, hit.astype(np.int8))
+    assert (cells.warmup_lost.values[hit] >= 1).all() and not cells.warmup_lost.values[~hit].any()
+    assert (cells.exposure.values[hit] > 0).all()
+    assert f"({int(hit.sum())} cells)" in cells.attrs["warmup"]
 
 
 CRIT = xr.Dataset({"heel_vanishing": 75.0, "flooding_angle": np.nan, "lwl": 100.0, "ea_crew_height": 10.0})

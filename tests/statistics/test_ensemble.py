@@ -339,10 +339,12 @@ def test_merge_keeps_the_first_shards_encoding_of_the_concatenated_coordinates(m
 
 def test_warmup_is_left_out_of_the_statistics_and_the_exposure():
     """A condition with ``warmup_s``: each record runs warm-up + duration from rest and its statistics
-    (moments, maximum, crossings with their times and step indices, peaks, lateral acceleration)
-    and exposure are those of the same record's states after the warm-up (regenerated); the first
-    records without warm-up are the same wave records, so their statistics differ. A record that
-    ends inside its warm-up keeps it (no capsize left out)."""
+    (moments, maximum, histogram, crossings with their times and step indices, peaks, lateral
+    acceleration's crossings, sums and maximum) and exposure are those of the same record's states
+    after the warm-up (regenerated); the first records without warm-up are the same wave records,
+    so their statistics differ. A record that ends inside its warm-up (a capsize) is lost: it counts
+    no steps, capsize, sample or event, its roll_max is the whole record's, and the merge leaves it
+    out of the moments and the exposure (left truncation)."""
     from stabflow.dynamics.rigid_body import lateral_specific_force
     from stabflow.statistics.ensemble import record_statistics
 
@@ -373,15 +375,37 @@ def test_warmup_is_left_out_of_the_statistics_and_the_exposure():
         np.testing.assert_array_equal(ens["crossing_step"].values[sel], nc + 200)
         a = lateral_specific_force(st[: last + 1], m.dt, h)[200:]
         assert float(ens["lateral_max"].sel(record=r)) == np.abs(a).max()
+        assert float(ens["lateral_sum"].sel(record=r)) == pytest.approx(a.sum(), rel=1e-12)
+        nl = sum(len(crossings(t, a, a, side * 1.0, up=side > 0)[0]) for side in (1, -1))
+        assert nl == int((ens["lateral_crossing_record"] == r).sum())
     assert int((ens["crossing_record"] >= 0).sum()) > 0  # the test exercises crossings
     assert np.all(ens["peak_time"].values >= 100.0) and np.all(ens["crossing_time"].values >= 100.0)
     allroll = np.concatenate(rolls)
     assert float(ens["roll_std"]) == pytest.approx(allroll.std(), rel=1e-9)
+    edges = np.arange(-90.0, 90.0 + 1e-9, float(cond["histogram"]["roll_bin_deg"]))
+    np.testing.assert_array_equal(ens["hist_roll"].values, np.histogram(allroll, edges)[0])
+    assert int(ens["warmup_lost_count"]) == 0 and not ens["warmup_lost"].values.any()
     cold = merge([run_shard(build_model(load_ship(SHIPS / "barge.yaml"), dict(cond, warmup_s=0.0)), range(0, 3),
                             progress=False)])
     assert float(cold["roll_std"]) != pytest.approx(float(ens["roll_std"]), rel=1e-3)
-    # a record that ended inside its warm-up (a capsize at step 150) keeps it
+    # a record that ended inside its warm-up (a capsize at step 150) is lost
     st, _ = simulate_record(m, 0)
-    kept = record_statistics(m, 0, st, 150, np.zeros(m.nsteps + 1))
-    assert (kept["steps"], kept["start"], kept["capsized"]) == (150, 0.0, 1)
-    assert kept["roll_max"] == np.abs(np.degrees(st[:151, S_ROLL])).max()
+    gone = record_statistics(m, 0, st, 150, np.zeros(m.nsteps + 1))
+    assert (gone["steps"], gone["lost"], gone["capsized"]) == (0, 1, 0) and np.isnan(gone["start"])
+    assert gone["roll_max"] == np.abs(np.degrees(st[:151, S_ROLL])).max() and np.isnan(gone["capsize_time"])
+    assert not gone["moments"].any() and not gone["hist"]["roll"].any() and len(gone["crossings"]) == 0
+    assert len(gone["peaks"]) == 0 and not gone["acov_n"].any() and gone["psd"] is None
+    assert len(gone["lateral"]["crossings"]) == 0 and not gone["lateral"]["sums"].any()
+    # merged with the others: no exposure, sample, capsize or event of its own
+    import stabflow.statistics.ensemble as E
+
+    real = E.record_statistics
+    E.record_statistics = lambda model, r, st, last, wm: real(model, r, st, 150 if r == 1 else last, wm)
+    try:
+        mixed = merge([run_shard(m, range(0, 3), progress=False)])
+    finally:
+        E.record_statistics = real
+    assert int(mixed["warmup_lost_count"]) == 1 and list(mixed["warmup_lost"].values) == [0, 1, 0]
+    assert float(mixed["exposure_hours"]) == pytest.approx(2 * 300.0 / 3600.0) and int(mixed["capsize_count"]) == 0
+    assert float(mixed["roll_std"]) == pytest.approx(np.concatenate([rolls[0], rolls[2]]).std(), rel=1e-9)
+    assert not (mixed["crossing_record"] == 1).any() and not (mixed["peak_record"] == 1).any()

@@ -131,10 +131,15 @@ def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = No
     h = np.asarray(headings_deg, float)
     v = np.asarray(speeds_kn, float)
     lo, hi = heading_span(h)
-    # each heading stands for an equal interval of a uniform heading around it, port and starboard
-    # mirrored: 0 and 180 deg, at the ends of the half circle, for half an interval (trapezoid weights)
-    wh = np.where((h == 0.0) | (h == 180.0), 0.5, 1.0)
-    wh = wh / wh.sum()
+    # each heading stands for the interval of one spacing around it, clipped to 0-180 deg (port and
+    # starboard mirrored): its weight is that interval's share of the span (0 and 180 deg: half an
+    # interval, the trapezoid rule; one heading: all of it)
+    if len(h) > 1:
+        d = h[1] - h[0]
+        wh = np.minimum(h + 0.5 * d, 180.0) - np.maximum(h - 0.5 * d, 0.0)
+        wh = wh / wh.sum()
+    else:
+        wh = np.ones(1)
     rows = [(a, b, m, u, c * w / len(v)) for a, b, c in zip(hs[ok], tz[ok], p[ok]) for m, w in zip(h, wh) for u in v]
     H, T, M, U, PR = (np.array(x, float) for x in zip(*rows))
     ds = xr.Dataset({"probability": ("cell", PR)},
@@ -145,8 +150,8 @@ def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = No
                     scatter_source=str(std.raw["iacs_rec34_scatter"]["meta"]["document"]),
                     heading_span=f"{lo:g}-{hi:g} deg",
                     probabilities=f"P(Hs, Tz) from the scatter table x heading weight x 1/speeds (a uniform heading "
-                                  f"over {lo:g}-{hi:g} deg, port and starboard mirrored, each heading standing for an "
-                                  "equal interval around it, 0 and 180 deg for half of one; speeds equally likely: "
+                                  f"over {lo:g}-{hi:g} deg, port and starboard mirrored, each heading standing for the "
+                                  "interval of one spacing around it clipped to 0-180 deg; speeds equally likely: "
                                   "stabflow's choice)")
     return ds
 
@@ -417,11 +422,25 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     allocation = str(scr.get("recheck_allocation", "probability"))
     p_mean = float(cells["probability"].mean())
     rc_n = np.zeros(n, np.int64)
+    lost = np.zeros(n, np.int64)  # records of the cell's runs lost in their warm-up
+    fallback = np.zeros(n, np.int8)  # 1: every record lost, the cell counted from rest
+
+    def note_warmup(i, ens):
+        lost[i] += (int(ens["warmup_lost_count"]) if "warmup_lost_count" in ens else 0) + int(
+            ens.attrs.get("warmup_lost_first", 0))
+        fallback[i] = max(int(fallback[i]), int(ens.attrs.get("warmup_fallback", 0)))
 
     def simulate(model, cf, s, lat):
         """(method, failures, exposure [s], rate, lo, hi [1/s], thresholds, records' counts or None,
         dataset) of one simulated cell: declustered failures counted, a zero count extrapolated."""
         ens = run_cell(model, cf)
+        if float(ens["exposure_hours"]) == 0.0 and cf["warmup_s"] > 0.0:
+            # every record capsized inside its warm-up (a cell failing within minutes from rest):
+            # nothing is left to count, so the cell is counted from rest instead (its transient in,
+            # which can only lower the rate of so severe a cell: a lower estimate), and flagged
+            lost_first = int(ens["warmup_lost_count"]) if "warmup_lost_count" in ens else int(cf["records"])
+            ens = run_cell(model, dict(cf, warmup_s=0.0))
+            ens.attrs.update(warmup_fallback=1, warmup_lost_first=lost_first)
         T = float(ens["exposure_hours"]) * 3600.0
         # declustering window: the decorrelation time of the cell's roll (as the extremes step), at
         # least one natural roll period; the same for the counted failures and the tail fit
@@ -456,6 +475,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
             cs = condition(cfg, ship.name, float(c.hs), float(c.tz), *key, scr["records"], scr["duration"],
                            cell_seed(cfg["seed"], *ix, 0), phi_f, 1.0, lateral, warm[key])
             es = run_cell(model, cs)
+            note_warmup(i, es)
             t_screen += time.process_time() - a
             s = float(es["roll_std"])
             # Gaussian (Rice) rates of exceedance on both sides, (zero up-crossing rate, level, sigma) of
@@ -490,6 +510,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                     rc_method[i], rc_k[i], rc_T[i], rc_r[i], rc_lo[i], rc_hi[i], used, per, ens = simulate(model, cf, s,
                                                                                                           lat)
                     rc_max[i] = float(ens["roll_max"].max())
+                    note_warmup(i, ens)
                     t_recheck += time.process_time() - a
                     if overrules(rc_method[i], rc_k[i], rc_r[i], hi[i]):
                         # the simulation contradicts the screening (failures counted, or a fitted
@@ -512,6 +533,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
         method[i], k[i], T[i], r[i], lo[i], hi[i], thr[i], per, ens = simulate(
             model if gaussian else with_initial_heel(model, float(cfg["initial_heel_deg"])), cf, s, lat)
         t_sim += time.process_time() - a
+        note_warmup(i, ens)
         sig[i], rmax[i] = float(ens["roll_std"]), float(ens["roll_max"].max())
         if lateral is not None:
             asig[i] = float(ens["lateral_acceleration_std"])
@@ -524,6 +546,10 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     cells["rate"], cells["rate_lo"], cells["rate_hi"] = (("cell", x) for x in (r, lo, hi))
     cells["roll_sigma"] = ("cell", sig, {"units": "degree", "long_name": "roll standard deviation of the cell's run"})
     cells["roll_max_cell"] = ("cell", rmax, {"units": "degree", "long_name": "largest |roll| of the cell's run"})
+    cells["warmup_lost"] = ("cell", lost, {"units": "1", "long_name": "records of the cell's runs (screening, "
+                                           "simulation, recheck) that capsized inside their warm-up and count nothing"})
+    cells["warmup_fallback"] = ("cell", fallback, {"units": "1", "long_name": "1: every record of the cell's simulation "
+                                                   "capsized inside its warm-up; the cell was counted from rest instead"})
     cells["parametric_fraction"] = ("cell", pf, {"units": "1", "long_name": "fraction of the sea's variance at "
                                                  "encounter frequencies and lengths that drive principal parametric roll"})
     cells["tail_threshold_sigma"] = ("cell", thr[:, 0], {"units": "1", "long_name": "threshold of the extrapolated "
@@ -567,7 +593,9 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                        warmup_s=float(np.mean(list(warm.values()))),
                        warmup=f"each record simulated from rest for {periods:g} natural roll "
                               f"periods ({float(np.mean(list(warm.values()))):.1f} s) before its failures, exposure and "
-                              "statistics are counted (a record that capsizes inside it keeps it)")
+                              "statistics are counted; a record that capsizes inside it counts nothing (left "
+                              f"truncation: {int(lost.sum())} records in {int((lost > 0).sum())} cells), a cell that "
+                              f"loses every record is counted from rest ({int(fallback.sum())} cells)")
     cells.attrs.update(ship=ship.name, failure_angle=phi_f, lwl=lwl, count_dispersion_estimate=disp,
                        count_dispersion_dof=dof,
                        screening=f"Gaussian (Rice) bound with roll sigma x {scr['sigma_factor']:g}"

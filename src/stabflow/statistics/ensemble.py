@@ -263,21 +263,28 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
 
     The warm-up's steps (``model.nwarm``) are left out of every statistic and of the exposure
     (``steps``: the steps counted, ``start``: the time they start at [s]); times and step indices
-    stay those of the record. A record that ends inside its warm-up (a capsize) keeps it, so that
-    no capsize is left out of the counts."""
+    stay those of the record. A record that ends inside its warm-up (a capsize) is *lost*: it counts
+    no steps, no capsize and no statistic (``lost`` 1; its ``roll_max`` is the whole record's, so
+    that no one reads it as calm), as the 1-DOF capsize validation's warm-up does. For a stationary
+    failure rate this is left truncation: the records that reach the end of the warm-up carry the
+    rate, whatever happened before (keeping a lost record's capsize with its short exposure, while the
+    others drop theirs, would raise the pooled rate by up to (warm-up + duration) / duration)."""
     cond = model.cond
     n = last + 1
-    w = model.nwarm if last > model.nwarm else 0
+    lost = model.nwarm > 0 and last <= model.nwarm
+    w = n if lost else model.nwarm
     t = np.arange(n) * model.dt
     h = states[:n, S_Z] - model.s0[S_Z]
     roll = np.degrees(states[:n, S_ROLL])
     pitch = np.degrees(states[:n, S_PITCH] - model.s0[S_PITCH])
     rate = np.degrees(states[:n, S_RATE + S_ROLL])
+    whole = float(np.abs(roll).max())
     tw, h, roll, pitch, rate = t[w:], h[w:], roll[w:], pitch[w:], rate[w:]
     series = {"heave": h, "roll": roll, "pitch": pitch}
-    out = {"steps": last - w, "start": w * model.dt, "capsized": int(last < model.nsteps),
-           "capsize_time": float(t[-1]) if last < model.nsteps else np.nan,
-           "roll_max": float(np.abs(roll).max()),
+    out = {"steps": 0 if lost else last - w, "start": np.nan if lost else w * model.dt, "lost": int(lost),
+           "capsized": int(last < model.nsteps and not lost),
+           "capsize_time": float(t[-1]) if last < model.nsteps and not lost else np.nan,
+           "roll_max": whole if lost else float(np.abs(roll).max()),
            "moments": np.array([[np.sum(s**k) for k in range(1, 5)] for s in series.values()])}
     edges = bins(cond)
     out["hist"] = {k: np.histogram(v, edges[k])[0] for k, v in series.items()}
@@ -297,7 +304,7 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     out["envelope_peaks"] = np.column_stack([te, ve])
     # autocovariance sums (zero-padded FFT) and Welch spectra, for records long enough
     maxlag = int(round(cond["max_lag"] / model.dt))
-    x = roll - roll.mean()
+    x = roll - roll.mean() if len(roll) else roll
     nfft = 1 << int(np.ceil(np.log2(2 * max(len(x), maxlag + 1))))
     fx = np.fft.rfft(x, nfft)
     acov = np.fft.irfft(fx * np.conj(fx), nfft)[: maxlag + 1]
@@ -307,8 +314,10 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     out["psd"] = welch_psd(np.array([wave_mid[w:n], h, roll, pitch]), model.dt) if len(tw) >= SPECTRUM_SEGMENT else None
     la = cond.get("lateral_acceleration")
     if la:
-        out["lateral"] = lateral_statistics(tw, lateral_specific_force(states[:n], model.dt, float(la["height"]),
-                                                                         float(model.p[P_G]))[w:], la)
+        acc = lateral_specific_force(states[:n], model.dt, float(la["height"]), float(model.p[P_G]))
+        out["lateral"] = lateral_statistics(tw, acc[w:], la)
+        if lost:
+            out["lateral"]["max"] = float(np.abs(acc).max())  # the whole record's, as roll_max
     return out
 
 
@@ -328,7 +337,7 @@ def lateral_statistics(t: np.ndarray, acc: np.ndarray, la: dict) -> dict:
     order = np.argsort(np.concatenate([tp, tm]), kind="stable")
     return {"crossings": np.concatenate(ev), "peaks": np.column_stack([np.concatenate([tp, tm]),
                                                                          np.concatenate([vp, -vm])])[order],
-            "sums": np.array([acc.sum(), (acc**2).sum()]), "max": float(np.abs(acc).max()),
+            "sums": np.array([acc.sum(), (acc**2).sum()]), "max": float(np.abs(acc).max()) if len(acc) else 0.0,
             "zero_upcrossings": len(crossings(t, acc, acc, 0.0, up=True)[0])}
 
 
@@ -347,7 +356,9 @@ def six_dof_events(model: Model, states: np.ndarray, last: int) -> dict:
 
     cond = model.cond
     status = K6.CAPSIZED if last < model.nsteps else K6.OK
-    w = model.nwarm if last > model.nwarm else 0  # as record_statistics: the warm-up left out
+    if model.nwarm > 0 and last <= model.nwarm:  # lost in its warm-up (record_statistics): no event
+        return {"broached": 0, "broach_time": np.nan, "surf_riding": 0}
+    w = model.nwarm  # as record_statistics: the warm-up left out
     ev = record_events(six_dof_dataset(model.six, states[w:], model.dt, status), broach_deg=float(cond["broach_deg"]),
                        celerity=G / model.sea.modal_frequency, surf_tolerance=float(cond["surf_tolerance"]),
                        surf_min_s=float(cond["surf_min_s"]), heading_deg=float(cond["heading_deg"]))
@@ -419,6 +430,7 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
     var = {name: xr.Variable(*dv) for name, dv in {
         "steps": ("record", np.array([p["steps"] for p in per], np.int64)),
         "statistics_start": ("record", np.array([p["start"] for p in per])),
+        "warmup_lost": ("record", np.array([p["lost"] for p in per], np.int8)),
         "capsized": ("record", np.array([p["capsized"] for p in per], np.int8)),
         "capsize_time": ("record", np.array([p["capsize_time"] for p in per])),
         "roll_max": ("record", np.array([p["roll_max"] for p in per])),
@@ -515,13 +527,21 @@ def diffraction_label(model: Model) -> str:
     return "none"
 
 
+def sample_counts(steps, lost=None) -> np.ndarray:
+    """Samples in each record's statistics: steps + 1, none for a record lost in its warm-up."""
+    n = np.asarray(steps, float) + 1.0
+    return n if lost is None else np.where(np.asarray(lost) != 0, 0.0, n)
+
+
 def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     """Merge shard datasets (in record order) into the condition's ensemble dataset, with derived
     statistics: mean, standard deviation, skewness and kurtosis per DOF, roll autocorrelation,
     mean response spectra, exposure time, capsize count and rate."""
     shards = sorted(shards, key=lambda d: int(d["record"][0]) if d.sizes["record"] else 0)
     first = shards[0].variables
-    rec_vars = ["steps", "statistics_start", "capsized", "capsize_time", "roll_max", "moment_sums"]
+    # (statistics_start and warmup_lost: shards written before 2026-12-07 have neither)
+    rec_vars = ["steps"] + [v for v in ("statistics_start", "warmup_lost") if v in first]
+    rec_vars += ["capsized", "capsize_time", "roll_max", "moment_sums"]
     rec_vars += [v for v in ("broached", "broach_time", "surf_riding", "lateral_max", "lateral_sum", "lateral_sum_squares",
                              "lateral_zero_upcrossings") if v in first]
     ev = {"crossing": [v for v in shards[0].data_vars if v.startswith("crossing_")],
@@ -569,13 +589,13 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     var["threshold"] = first["threshold"]
     dt = shards[0].attrs["dt"]
     steps = var["steps"].values
-    n = steps.astype(float) + 1  # samples per record
+    n = sample_counts(steps, var["warmup_lost"].values if "warmup_lost" in var else None)
     dofs = list(first["dof"].values)
     orders = list(first["order"].values)
     # raw moment sums per DOF: (dof, order) summed over the records
     S = np.nansum(var["moment_sums"].values, axis=0)  # as xarray's sum (NaN skipped)
     S1, S2, S3, S4 = (S[:, orders.index(k)] for k in (1, 2, 3, 4))
-    N = n.sum()
+    N = n.sum() or np.nan  # no sample: every record lost in its warm-up (warmup_lost_count), moments NaN
     mean = S1 / N
     m2 = S2 / N - mean**2
     m3 = S3 / N - 3 * mean * S2 / N + 2 * mean**3
@@ -592,15 +612,18 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
         var[f"{s}_psd"] = var[f"{s}_psd_sum"] / max(int(var["psd_count"].values), 1)
     hours = float(steps.sum()) * dt / 3600.0
     var["exposure_hours"] = xr.Variable((), hours)
+    if "warmup_lost" in var:
+        var["warmup_lost_count"] = xr.Variable((), int(var["warmup_lost"].values.sum()))
     caps = var["capsized"].values
     var["capsize_count"] = xr.Variable((), int(caps.sum()))
-    var["capsize_rate"] = xr.Variable((), int(caps.sum()) / hours)
+    # no exposure: every record capsized inside its warm-up (warmup_lost_count says so): no rate
+    var["capsize_rate"] = xr.Variable((), int(caps.sum()) / hours if hours > 0 else np.nan)
     if "lateral_max" in first:
         mean_a = float(np.nansum(var["lateral_sum"].values)) / N
         var["lateral_acceleration_std"] = xr.Variable((), float(np.sqrt(max(float(np.nansum(var["lateral_sum_squares"].values))
                                                                              / N - mean_a**2, 0.0))))
         var["lateral_zero_upcrossing_rate"] = xr.Variable((), float(var["lateral_zero_upcrossings"].values.sum())
-                                                          / (hours * 3600.0))
+                                                          / (hours * 3600.0) if hours > 0 else np.nan)
         var["lateral_limit"] = first["lateral_limit"]
     if "broached" in first:
         var["broach_count"] = xr.Variable((), int(var["broached"].values.sum()))

@@ -322,7 +322,10 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
     rec_all = ens["record"].values
     sample = rec_all[:nrec]
     in_s = np.isin(rec_all, sample)
-    n_samples = int((ens["steps"].values[in_s] + 1).sum())
+    from stabflow.statistics.ensemble import sample_counts
+
+    lost = ens["warmup_lost"].values[in_s] if "warmup_lost" in ens else None
+    n_samples = int(sample_counts(ens["steps"].values[in_s], lost).sum())
     hours = float(ens["steps"].values[in_s].sum()) * dt / 3600.0
     bf_k = int(ens["capsized"].values[~in_s].sum())
     bf_hours = float(ens["steps"].values[~in_s].sum()) * dt / 3600.0
