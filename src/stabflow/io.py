@@ -92,7 +92,6 @@ CF_ATTRS: dict[str, tuple[str, str]] = {
     # ensembles (roll and pitch statistics in degree, heave in m)
     "record": ("1", "record index (with the master seed, defines the record's seaway)"),
     "steps": ("1", "RK4 steps of the record in its statistics, after its warm-up (fewer than planned if it capsized)"),
-    "statistics_start": ("s", "time the record's statistics start at: the end of its warm-up (0: none; NaN: lost in it)"),
     "warmup_lost": ("1", "1: the record ended (capsized) inside its warm-up and counts no steps, capsize or statistic"),
     "warmup_lost_count": ("1", "records that ended (capsized) inside their warm-up, left out of every statistic"),
     "capsized": ("1", "1 if roll passed 90 degree in the record"),

@@ -129,6 +129,13 @@ def _check_station_wave(wave, X, Y, amp, w, ph):
     assert np.max(np.abs(wave[:, 3] - curv)) < 1e-2 * np.max(np.abs(curv))
 
 
+def _decay_model(trawler):
+    """The test trawler with the rudder, waves 30 degree off the stern and the pressure decay."""
+    ship, sec, st, co, tabs, ab = trawler
+    return build_six_dof(sec, st, co, ship.rho, 30.0, SPEED, Manoeuvring(foils=(RUDDER,), added_mass=ab),
+                         tables=tabs, dphi_dzdt=True)
+
+
 @pytest.mark.parametrize("yaw_deg", [25.0, -40.0])
 def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawler, yaw_deg):
     """The pressure-decay columns of a model with ``dphi_dzdt`` (``SectionDecay``'s F, Z and Y) read
@@ -145,9 +152,8 @@ def test_pressure_decay_terms_at_moving_stations_against_direct_synthesis(trawle
     amplitude's sign."""
     from stabflow.waves.synthesis import DECAY_BLOCKS, DECAY_RANK_TOLERANCE
 
-    ship, sec, st, co, tabs, ab = trawler
-    model = build_six_dof(sec, st, co, ship.rho, 30.0, SPEED, Manoeuvring(foils=(RUDDER,), added_mass=ab),
-                          tables=tabs, dphi_dzdt=True)
+    sec = trawler[1]
+    model = _decay_model(trawler)
     rng = np.random.default_rng(8)
     amp, w, ph = rng.uniform(0.1, 0.5, 20), np.linspace(0.5, 2.0, 20), rng.uniform(-np.pi, np.pi, 20)
     lw = line_waves(model, (amp, w, ph))
@@ -295,9 +301,7 @@ def test_record_point_coefficients_shift_the_time_factors(trawler):
     coefficients are kept for the count of points (at most ``OFFSET_TABLES`` counts)."""
     from stabflow.waves import synthesis as syn
 
-    ship, sec, st, co, tabs, ab = trawler
-    model = build_six_dof(sec, st, co, ship.rho, 30.0, SPEED, Manoeuvring(foils=(RUDDER,), added_mass=ab),
-                          tables=tabs, dphi_dzdt=True)
+    model = _decay_model(trawler)
     rng = np.random.default_rng(11)
     amp, w, ph = rng.uniform(0.1, 0.5, 30), np.linspace(0.4, 2.2, 30), rng.uniform(-np.pi, np.pi, 30)
     lw = line_waves(model, (amp, w, ph))

@@ -358,7 +358,7 @@ def test_warmup_is_left_out_of_the_statistics_and_the_exposure():
     ens = merge([run_shard(m, range(0, 3), progress=False)])
     assert int(ens["capsize_count"]) == 0
     assert float(ens["exposure_hours"]) == pytest.approx(3 * 300.0 / 3600.0)
-    assert np.all(ens["statistics_start"].values == 100.0) and ens.attrs["warmup_s"] == 100.0
+    assert not ens["warmup_lost"].values.any() and ens.attrs["warmup_s"] == 100.0
     thr = float(ens["threshold"][0])
     rolls = []
     for r in range(3):
@@ -391,7 +391,7 @@ def test_warmup_is_left_out_of_the_statistics_and_the_exposure():
     # a record that ended inside its warm-up (a capsize at step 150) is lost
     st, _ = simulate_record(m, 0)
     gone = record_statistics(m, 0, st, 150, np.zeros(m.nsteps + 1))
-    assert (gone["steps"], gone["lost"], gone["capsized"]) == (0, 1, 0) and np.isnan(gone["start"])
+    assert (gone["steps"], gone["lost"], gone["capsized"]) == (0, 1, 0) and m.lost(150) and not m.lost(201)
     assert gone["roll_max"] == np.abs(np.degrees(st[:151, S_ROLL])).max() and np.isnan(gone["capsize_time"])
     assert not gone["moments"].any() and not gone["hist"]["roll"].any() and len(gone["crossings"]) == 0
     assert len(gone["peaks"]) == 0 and not gone["acov_n"].any() and gone["psd"] is None

@@ -3,8 +3,8 @@ x headings x speeds, screened cheaply, simulated where it matters, aggregated by
 
 A cell is (Hs, Tz, heading, speed) with probability P(Hs, Tz) P(heading) P(speed): the IACS Rec. 34
 North Atlantic table (rows read, ``resources/criteria/iacs_rec34_scatter.yaml``), a uniform heading over
-the span the equally spaced headings cover (each heading an equal interval around it; 0 and 180 degree
-half of one: :func:`heading_span`) and equally likely speeds (stabflow's choice; the
+the span the equally spaced headings cover (each heading the interval of one spacing around it, clipped
+to 0-180 degree: :func:`heading_intervals`) and equally likely speeds (stabflow's choice; the
 circular's operational assumptions were not read). The sea
 of a cell is the two-parameter Bretschneider spectrum at (Hs, Tz), long-crested, through the
 ensemble engine's seaway and 3-DOF model (:mod:`stabflow.statistics.ensemble`).
@@ -19,7 +19,8 @@ Per cell, in order:
 
 Every record starts from rest and is simulated for ``warmup_roll_periods`` natural roll periods
 before its ``duration`` is counted: the transient is left out of the failures, the exposure and
-the statistics (the ensemble engine's ``warmup_s``; a record that capsizes inside it keeps it).
+the statistics (the ensemble engine's ``warmup_s``); a record that capsizes inside it counts nothing
+(left truncation), and a cell whose records all do is counted from rest and flagged (``warmup_fallback``).
 
 1. *Screening run*: ``screen.records`` records of ``screen.duration``. The Gaussian (Rice) rate of
    |roll| above the failure angle with the run's roll sigma inflated by ``screen.sigma_factor``,
@@ -130,16 +131,11 @@ def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = No
         ok &= hs <= hs_max
     h = np.asarray(headings_deg, float)
     v = np.asarray(speeds_kn, float)
-    lo, hi = heading_span(h)
-    # each heading stands for the interval of one spacing around it, clipped to 0-180 deg (port and
-    # starboard mirrored): its weight is that interval's share of the span (0 and 180 deg: half an
-    # interval, the trapezoid rule; one heading: all of it)
-    if len(h) > 1:
-        d = h[1] - h[0]
-        wh = np.minimum(h + 0.5 * d, 180.0) - np.maximum(h - 0.5 * d, 0.0)
-        wh = wh / wh.sum()
-    else:
-        wh = np.ones(1)
+    a, b = heading_intervals(h)
+    lo, hi = float(a[0]), float(b[-1])
+    # each heading weighs its interval's share of the span (0 and 180 deg: half an interval, the
+    # trapezoid rule; one heading: all of it)
+    wh = (b - a) / (hi - lo) if hi > lo else np.ones(1)
     rows = [(a, b, m, u, c * w / len(v)) for a, b, c in zip(hs[ok], tz[ok], p[ok]) for m, w in zip(h, wh) for u in v]
     H, T, M, U, PR = (np.array(x, float) for x in zip(*rows))
     ds = xr.Dataset({"probability": ("cell", PR)},
@@ -156,20 +152,27 @@ def cell_grid(std: Standards, headings_deg, speeds_kn, hs_max: float | None = No
     return ds
 
 
-def heading_span(headings_deg) -> tuple[float, float]:
-    """(lowest, highest) heading [degree] of the uniform heading that equally spaced, increasing
-    ``headings_deg`` stand for: each the interval of one spacing around it, clipped to 0-180 (one
-    heading: itself). Raises StabflowError (naming ``dsa.headings_deg``) if they are not."""
+def heading_intervals(headings_deg) -> tuple[np.ndarray, np.ndarray]:
+    """(from, to) [degree] of the interval each of the equally spaced, increasing ``headings_deg``
+    stands for in a uniform heading: one spacing around it, clipped to 0-180 (port and starboard
+    mirrored; one heading: itself). Raises StabflowError (naming ``dsa.headings_deg``) if they are not."""
     from stabflow import StabflowError
 
     h = np.asarray(headings_deg, float)
     if len(h) == 1:
-        return float(h[0]), float(h[0])
+        return h.copy(), h.copy()
     d = np.diff(h)
     if np.any(d <= 0) or not np.allclose(d, d[0], rtol=0, atol=1e-9):
         raise StabflowError(f"dsa.headings_deg: {list(map(float, h))} are not equally spaced in increasing order: each "
                             "heading stands for an equal interval of a uniform heading around it")
-    return max(0.0, float(h[0] - 0.5 * d[0])), min(180.0, float(h[-1] + 0.5 * d[0]))
+    return np.maximum(h - 0.5 * d[0], 0.0), np.minimum(h + 0.5 * d[0], 180.0)
+
+
+def heading_span(headings_deg) -> tuple[float, float]:
+    """(lowest, highest) heading [degree] of the uniform heading ``headings_deg`` stand for
+    (:func:`heading_intervals`)."""
+    a, b = heading_intervals(headings_deg)
+    return float(a[0]), float(b[-1])
 
 
 def cell_seed(master: int, *indices: int) -> int:
@@ -395,6 +398,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     periods = float(cfg.get("warmup_roll_periods", schema("config")["properties"]["dsa"]["properties"]
                             ["warmup_roll_periods"]["default"]))
     warm = {key: periods * mo.roll_period for key, mo in models.items()}
+    warm_mean = float(np.mean(list(warm.values())))
     t_build = time.process_time() - t0
     n = cells.sizes["cell"]
     method = np.empty(n, object)
@@ -426,8 +430,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
     fallback = np.zeros(n, np.int8)  # 1: every record lost, the cell counted from rest
 
     def note_warmup(i, ens):
-        lost[i] += (int(ens["warmup_lost_count"]) if "warmup_lost_count" in ens else 0) + int(
-            ens.attrs.get("warmup_lost_first", 0))
+        lost[i] += int(ens["warmup_lost_count"]) + int(ens.attrs.get("warmup_lost_first", 0))
         fallback[i] = max(int(fallback[i]), int(ens.attrs.get("warmup_fallback", 0)))
 
     def simulate(model, cf, s, lat):
@@ -438,7 +441,7 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
             # every record capsized inside its warm-up (a cell failing within minutes from rest):
             # nothing is left to count, so the cell is counted from rest instead (its transient in,
             # which can only lower the rate of so severe a cell: a lower estimate), and flagged
-            lost_first = int(ens["warmup_lost_count"]) if "warmup_lost_count" in ens else int(cf["records"])
+            lost_first = int(ens["warmup_lost_count"])
             ens = run_cell(model, dict(cf, warmup_s=0.0))
             ens.attrs.update(warmup_fallback=1, warmup_lost_first=lost_first)
         T = float(ens["exposure_hours"]) * 3600.0
@@ -590,9 +593,9 @@ def assess_cells(ship: Ship, cfg: dict, phi_f: float, lwl: float, hydro: xr.Data
                            lateral_acceleration_source=std.get(ACC_KEY).cite())
     cells.attrs.update(parametric_cells=int(resonant.sum()), dphi_dzdt=int(bool(cfg.get("dphi_dzdt", False))),
                        warmup_roll_periods=periods,
-                       warmup_s=float(np.mean(list(warm.values()))),
+                       warmup_s=warm_mean,
                        warmup=f"each record simulated from rest for {periods:g} natural roll "
-                              f"periods ({float(np.mean(list(warm.values()))):.1f} s) before its failures, exposure and "
+                              f"periods ({warm_mean:.1f} s) before its failures, exposure and "
                               "statistics are counted; a record that capsizes inside it counts nothing (left "
                               f"truncation: {int(lost.sum())} records in {int((lost > 0).sum())} cells), a cell that "
                               f"loses every record is counted from rest ({int(fallback.sum())} cells)")

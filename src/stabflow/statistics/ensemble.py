@@ -81,6 +81,10 @@ class Model:
         """Steps of a record: the warm-up and then ``duration``."""
         return self.nwarm + int(round(self.cond["duration"] / self.dt))
 
+    def lost(self, last: int) -> bool:
+        """A record whose last step is ``last`` ended (capsized) inside its warm-up: it counts nothing."""
+        return self.nwarm > 0 and last <= self.nwarm
+
     @property
     def speed(self) -> float:
         return float(self.cond["speed_kn"]) * KNOT
@@ -262,7 +266,7 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     """Everything kept from one record (``states`` (nsteps + 1, N_STATE), valid up to ``last``).
 
     The warm-up's steps (``model.nwarm``) are left out of every statistic and of the exposure
-    (``steps``: the steps counted, ``start``: the time they start at [s]); times and step indices
+    (``steps``: the steps counted, after ``model.nwarm``); times and step indices
     stay those of the record. A record that ends inside its warm-up (a capsize) is *lost*: it counts
     no steps, no capsize and no statistic (``lost`` 1; its ``roll_max`` is the whole record's, so
     that no one reads it as calm), as the 1-DOF capsize validation's warm-up does. For a stationary
@@ -271,7 +275,7 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     others drop theirs, would raise the pooled rate by up to (warm-up + duration) / duration)."""
     cond = model.cond
     n = last + 1
-    lost = model.nwarm > 0 and last <= model.nwarm
+    lost = model.lost(last)
     w = n if lost else model.nwarm
     t = np.arange(n) * model.dt
     h = states[:n, S_Z] - model.s0[S_Z]
@@ -281,7 +285,7 @@ def record_statistics(model: Model, record: int, states: np.ndarray, last: int, 
     whole = float(np.abs(roll).max())
     tw, h, roll, pitch, rate = t[w:], h[w:], roll[w:], pitch[w:], rate[w:]
     series = {"heave": h, "roll": roll, "pitch": pitch}
-    out = {"steps": 0 if lost else last - w, "start": np.nan if lost else w * model.dt, "lost": int(lost),
+    out = {"steps": 0 if lost else last - w, "lost": int(lost),
            "capsized": int(last < model.nsteps and not lost),
            "capsize_time": float(t[-1]) if last < model.nsteps and not lost else np.nan,
            "roll_max": whole if lost else float(np.abs(roll).max()),
@@ -356,7 +360,7 @@ def six_dof_events(model: Model, states: np.ndarray, last: int) -> dict:
 
     cond = model.cond
     status = K6.CAPSIZED if last < model.nsteps else K6.OK
-    if model.nwarm > 0 and last <= model.nwarm:  # lost in its warm-up (record_statistics): no event
+    if model.lost(last):  # lost in its warm-up (record_statistics): no event
         return {"broached": 0, "broach_time": np.nan, "surf_riding": 0}
     w = model.nwarm  # as record_statistics: the warm-up left out
     ev = record_events(six_dof_dataset(model.six, states[w:], model.dt, status), broach_deg=float(cond["broach_deg"]),
@@ -429,7 +433,6 @@ def shard_dataset(model: Model, recs, per, samples, edges) -> xr.Dataset:
     # re-merges every variable: ~30 ms per one-record shard)
     var = {name: xr.Variable(*dv) for name, dv in {
         "steps": ("record", np.array([p["steps"] for p in per], np.int64)),
-        "statistics_start": ("record", np.array([p["start"] for p in per])),
         "warmup_lost": ("record", np.array([p["lost"] for p in per], np.int8)),
         "capsized": ("record", np.array([p["capsized"] for p in per], np.int8)),
         "capsize_time": ("record", np.array([p["capsize_time"] for p in per])),
@@ -539,8 +542,8 @@ def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     mean response spectra, exposure time, capsize count and rate."""
     shards = sorted(shards, key=lambda d: int(d["record"][0]) if d.sizes["record"] else 0)
     first = shards[0].variables
-    # (statistics_start and warmup_lost: shards written before 2026-12-07 have neither)
-    rec_vars = ["steps"] + [v for v in ("statistics_start", "warmup_lost") if v in first]
+    # (warmup_lost: shards written before 2026-12-07 have none)
+    rec_vars = ["steps"] + (["warmup_lost"] if "warmup_lost" in first else [])
     rec_vars += ["capsized", "capsize_time", "roll_max", "moment_sums"]
     rec_vars += [v for v in ("broached", "broach_time", "surf_riding", "lateral_max", "lateral_sum", "lateral_sum_squares",
                              "lateral_zero_upcrossings") if v in first]
