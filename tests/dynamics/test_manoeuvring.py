@@ -354,7 +354,9 @@ def test_station_wave_on_a_moving_line_table(trawler):
 @pytest.mark.parametrize("waterline,dphi_dzdt", [("planar", False), ("curved", False), ("planar", True),
                                                  ("curved", True)])
 def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler, waterline, dphi_dzdt, monkeypatch):
-    """Surge, sway and yaw held, no foils, wave nodes at the stations, the stations placed as the
+    """Surge, sway and yaw held, no foils nor hull manoeuvring forces (heeled and pitched, a ship
+    held on course still meets a body-axis cross-flow sin(phi) sin(theta) U and yaw rate
+    -sin(phi) q, which the 3-DOF model has no forces for), wave nodes at the stations, the stations placed as the
     3-DOF model's (``M_KEEL_LINE`` 0: on G's axis): heave, roll and pitch equal the 3-DOF kernel's
     to round-off (same loads, same rigid-body equations), with either waterline (the curved one
     takes eta_xixi = dS/dxi from the line table) and with the pressure decay (its line
@@ -380,10 +382,11 @@ def test_held_horizontal_motions_equal_the_three_dof_kernel(trawler, waterline, 
     m = model.m.copy()
     assert m[K6.M_KEEL_LINE] == 1.0
     m[K6.M_XI0], m[K6.M_DXI], m[K6.M_KEEL_LINE] = x[0] * cb, (x[1] - x[0]) * cb, 0.0
+    m[[K6.M_YV, K6.M_YR, K6.M_NV, K6.M_NR]] = 0.0
     s0 = model.s0.copy()
     s0[K.S_RATE + K.S_ROLL] = 0.05
     out6 = np.empty((n + 1, K6.N_STATE6))
-    last, status = K6._simulate6(*kernel_args(sec, tabs), p6, m, np.zeros((0, K6.F_N)), model.strips, ltab,
+    last, status = K6._simulate6(*kernel_args(sec, tabs), p6, m, np.zeros((0, K6.F_N)), np.zeros((0, 2)), ltab,
                                  lw.decay_weights, dt, n, s0, np.radians(90.0), out6)
     assert (last, status) == (n, K6.OK)
     p3 = parameters(co, ship.rho, float(st["lcg"]), float(st["kg"]), beta)
@@ -486,8 +489,10 @@ def test_records_converge_with_the_step(trawler):
     waterline distance, have kinks at their cells, and since the tilted sections' surge force reads
     their centroids (``_kernels_6dof._tilt_loads``) these leave an error floor near 1e-6 of the largest
     value (tables: 1.7e-6 at 0.05 s, 1.2e-6 at 0.025 s, 2.1e-7 at 0.0125 s against 0.003125 s).
-    Exact clipping, measured: 5.8e-7 at 0.05 s and 4.0e-8 at 0.025 s (ratio 14.4; RK4's 16). The
-    tables' path (the default) is held to the floor: both steps within 3e-6 of dt 0.00625 s."""
+    Exact clipping, measured: 5.8e-7 at 0.05 s and 4.0e-8 at 0.025 s (ratio 14.4; RK4's 16); with
+    the hull and foil loads in body axes (2026-12-07, heel and pitch in their flow and force) 2.2e-6,
+    1.3e-7 and 4.3e-9 at 0.05, 0.025 and 0.0125 s (ratios 17.4 and 29.9). The tables' path (the
+    default) is held to the floor: measured 4.0e-6, 9.1e-7 and 6.5e-8, all within 5e-6 of dt 0.00625 s."""
     from stabflow.waves.seaway import Seaway
 
     ship, sec, st, co, tabs, ab = trawler
@@ -495,12 +500,12 @@ def test_records_converge_with_the_step(trawler):
     waves = Seaway(kind="pierson_moskowitz", hs=1.5).components(17, 0)
     ref = simulate_six_dof(model, waves, 30.0, 0.00625, dtype=np.float64)
     err = _trajectory_error(model, waves, ref, (0.025, 0.05))
-    assert err[0.05] < 2e-6 and err[0.025] < 2e-7, err
+    assert err[0.05] < 3e-6 and err[0.025] < 2e-7, err
     assert err[0.05] / err[0.025] > 8.0, err  # first order: 2, second: 4
     tabled = six_dof(trawler, heading=45.0)
     ref = simulate_six_dof(tabled, waves, 30.0, 0.00625, dtype=np.float64)
     err = _trajectory_error(tabled, waves, ref, (0.025, 0.05))
-    assert max(err.values()) < 3e-6, err
+    assert max(err.values()) < 5e-6, err
 
 
 def _trajectory_error(model, waves, ref, dts):
@@ -549,9 +554,8 @@ def test_event_location_keeps_rk4_order_through_stall_slew_and_stop(trawler):
 def _rudder_attack(model, s):
     """The rudder's angle of attack [rad] in state ``s`` (as ``_kernels_6dof._modes`` reads it)."""
     j = int(np.nonzero(model.foils[:, K6.F_RUDDER])[0][0])
-    _, _, u, v = K6._heading_velocities(model.m, s)
-    vf = v + s[K6.S_RATE + K6.S_YAW] * model.foils[j, K6.F_X] - s[K6.S_RATE + K6.S_ROLL] * model.foils[j, K6.F_Z]
-    return K6._attack(u, vf, s[K6.S_RUDDER])
+    uf, vf = K6._body_flow(model.m, s, model.foils[j, K6.F_X], model.foils[j, K6.F_Z])
+    return K6._attack(uf, vf, s[K6.S_RUDDER])
 
 
 def test_event_location_finds_a_stall_inside_a_step_whose_ends_are_attached(trawler):
@@ -924,11 +928,17 @@ def test_a_ship_leaving_its_table_continues_from_its_last_step_inside(trawler, m
 
 def test_steady_turn_heels_outward(trawler):
     """In a steady starboard turn the centrifugal load (at G, above the hull's side force) heels the
-    ship to port (negative roll), after a short inward heel from the rudder force."""
-    model = six_dof(trawler, autopilot=Autopilot(mode="fixed", rudder_deg=10.0))
-    ds = simulate_six_dof(model, ([], [], []), 60.0, 0.05)
-    assert float(ds["yaw_rate"][-1]) < 0.0
-    assert float(ds["roll"][-1]) < -1.0
+    ship to port (negative roll), after a short inward heel from the rudder force. At 8 degree of
+    rudder the turn settles (at 10 degree and more the trawler's turn keeps a slow sway-yaw-roll
+    oscillation of about 100 s, with or without the heeled hull and foil loads): the test first
+    asserts that it is steady."""
+    model = six_dof(trawler, autopilot=Autopilot(mode="fixed", rudder_deg=8.0))
+    ds = simulate_six_dof(model, ([], [], []), 240.0, 0.05)
+    last = ds.sel(time=slice(180.0, None))
+    r = last["yaw_rate"].values
+    assert r.max() < 0.0 and np.ptp(r) < 0.01 * abs(r.mean())
+    assert np.ptp(last["roll"].values) < 0.05
+    assert float(last["roll"].mean()) < -0.5
 
 
 def test_small_waves_against_the_linear_frequency_domain_solution(trawler):
@@ -950,3 +960,85 @@ def test_small_waves_against_the_linear_frequency_domain_solution(trawler):
     lin = [abs(X[0]), abs(X[1]), abs(X[2]), np.degrees(abs(X[3])), np.degrees(abs(X[4])), np.degrees(abs(X[5]))]
     for v, ref in zip(("surge", "sway", "heave", "roll", "pitch", "yaw"), lin):
         assert fh[v] == pytest.approx(ref, rel=0.005), v
+
+
+def _rotation(phi, theta):
+    """R = Ry(theta) Rx(phi) as a matrix (body -> heading frame)."""
+    from scipy.spatial.transform import Rotation
+    return Rotation.from_euler("xy", [phi, theta]).as_matrix()
+
+
+def test_heeled_hull_and_foil_loads_in_body_axes(trawler):
+    """The hull's side force and yaw moment and the foils' forces are found from the body-axis flow
+    and turned into the heading frame: against a matrix implementation of the same statement
+    (velocity of the point (u, v, 0) + omega x R r, turned back by R^T; body load rotated by R, its
+    moment about G) at 30 degree of roll and 4 of pitch, with all rates and a stalled rudder."""
+    model = six_dof(trawler)
+    p, m, foils, strips = model.p, model.m.copy(), model.foils, model.strips
+    s = np.zeros(K6.N_STATE6)
+    phi, theta, psi = np.radians(30.0), np.radians(4.0), np.radians(12.0)
+    s[K.S_ROLL], s[K.S_PITCH], s[K.S_YAW] = phi, theta, psi
+    s[K.S_RATE + K.S_X], s[K.S_RATE + K.S_Y] = 0.3, 0.8
+    s[K.S_RATE + K.S_ROLL], s[K.S_RATE + K.S_PITCH], s[K.S_RATE + K.S_YAW] = 0.2, -0.05, 0.07
+    for delta in (np.radians(10.0), np.radians(33.0)):
+        f = np.zeros(6)
+        K6._manoeuvring_loads(p, m, foils, strips, s, delta, f, np.full(len(foils) + 2, -1, np.int64))
+        R = _rotation(phi, theta)
+        xd, yd = m[K6.M_SPEED] + s[K.S_RATE + K.S_X], s[K.S_RATE + K.S_Y]
+        u, v = np.cos(psi) * xd + np.sin(psi) * yd, -np.sin(psi) * xd + np.cos(psi) * yd
+        w = s[K.S_RATE + K.S_ROLL:K.S_RATE + K.S_YAW + 1]
+        vel = np.array([u, v, 0.0])
+        ref = np.zeros(6)
+        cf = 0.075 / (np.log10(abs(u) * m[K6.M_LNU]) - 2.0) ** 2
+        ab = m[K6.M_AB:K6.M_AB + 9]
+        ref[0] = m[K6.M_THRUST] - m[K6.M_RES] * cf * u * abs(u) + (ab[4] * v + 0.5 * (ab[5] + ab[7]) * w[2]) * w[2]
+        # hull: body velocities of G and the body yaw rate
+        vb = R.T @ vel
+        wb = R.T @ w
+        vm = vb[1] - p[K.P_XG] * wb[2]
+        Y = vb[0] * (m[K6.M_YV] * vm + m[K6.M_YR] * wb[2])
+        N = vb[0] * (m[K6.M_NV] * vm + m[K6.M_NR] * wb[2]) - p[K.P_XG] * Y
+        vl = vb[1] + wb[2] * strips[:, 0]
+        Y += np.sum(-strips[:, 1] * vl * np.abs(vl))
+        N += np.sum(strips[:, 0] * -strips[:, 1] * vl * np.abs(vl))
+        F = R @ np.array([0.0, Y, 0.0])
+        rh = R @ np.array([0.0, 0.0, m[K6.M_ZH]])
+        ref[:3] += F
+        ref[3:] += R @ np.array([0.0, 0.0, N]) + np.cross(rh, F)
+        for fo in foils:
+            rf = R @ np.array([fo[K6.F_X], 0.0, fo[K6.F_Z]])
+            vf = R.T @ (vel + np.cross(w, rf))
+            dl = delta if fo[K6.F_RUDDER] else 0.0
+            fb = K6._foil_force(vf[0], vf[1], dl, p[K.P_RHO], fo[K6.F_AREA], fo[K6.F_CLA], fo[K6.F_STALL],
+                                fo[K6.F_TRAIL], fo[K6.F_AR], fo[K6.F_CN])
+            F = R @ np.array([fb[0], fb[1], 0.0])
+            ref[:3] += F
+            ref[3:] += np.cross(rf, F)
+        np.testing.assert_allclose(f, ref, rtol=1e-12, atol=1e-9 * np.abs(ref).max())
+
+
+def test_heeled_foil_lift_goes_as_cos_squared_of_the_roll(trawler):
+    """A foil heeled by phi meets the sway velocity at v cos(phi), and its lift, normal to the span,
+    has the horizontal part cos(phi) of it: the horizontal lift in slow sway goes as cos^2(phi), its
+    vertical part as sin(phi) cos(phi), and the roll moment about G as cos(phi)."""
+    model = six_dof(trawler)
+    m = model.m.copy()
+    m[[K6.M_YV, K6.M_YR, K6.M_NV, K6.M_NR, K6.M_RES, K6.M_THRUST]] = 0.0
+    m[K6.M_AB:K6.M_AB + 9] = 0.0
+    foil = model.foils[:1].copy()
+    foil[0, K6.F_X], foil[0, K6.F_Z], foil[0, K6.F_CN] = -11.0, -1.5, 0.0
+    loads = []
+    for phi in (0.0, np.radians(30.0), np.radians(45.0)):
+        s = np.zeros(K6.N_STATE6)
+        s[K.S_ROLL] = phi
+        s[K.S_RATE + K.S_Y] = 0.005
+        f = np.zeros(6)
+        K6._manoeuvring_loads(model.p, m, foil, np.zeros((0, 2)), s, 0.0, f, np.full(3, -1, np.int64))
+        loads.append(f)
+    f0 = loads[0]
+    assert f0[1] < 0.0 and f0[2] == 0.0
+    for phi, f in zip((np.radians(30.0), np.radians(45.0)), loads[1:]):
+        assert f[1] == pytest.approx(f0[1] * np.cos(phi) ** 2, rel=1e-4)
+        assert f[2] == pytest.approx(f0[1] * np.cos(phi) * np.sin(phi), rel=1e-4)
+        assert f[3] == pytest.approx(f0[3] * np.cos(phi), rel=1e-4)
+        assert f[5] == pytest.approx(f0[5] * np.cos(phi) ** 2, rel=1e-4)

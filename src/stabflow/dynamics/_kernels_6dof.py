@@ -421,8 +421,9 @@ def _attack(uf, vf, delta):
 
 @njit(cache=True, inline="always")
 def _foil_force(uf, vf, delta, rho, area, cla, stall, trail, ar, cn, mode=-1):
-    """Horizontal force (Fx, Fy) [N] of a vertical foil moving at (uf, vf) [m/s] through still water,
-    chord turned by ``delta`` (nose to port for delta > 0), in the horizontal plane (span vertical).
+    """Force (Fx, Fy) [N] in body axes of a foil whose span lies along body z, moving at (uf, vf) [m/s]
+    (body axes, ``_body_flow``) through still water, chord turned by ``delta`` (nose to port for
+    delta > 0); the spanwise flow gives no force.
 
     Lift (paper 004 eqs 5, 9, 11): the angle of attack is measured from the upstream direction to
     the chord; lift is normal to the flow, C_L = C_La alpha below the stall angle, C_La (alpha -+ pi)
@@ -473,51 +474,96 @@ def _heading_velocities(m, s):
     return c, sn, c * xd + sn * yd, -sn * xd + c * yd
 
 
+@njit(cache=True, inline="always")
+def _body_flow(m, s, x, z):
+    """Velocity (u_b, v_b) [m/s] through still water of the body point (x, 0, z) from G [m], in body
+    axes: the heading frame's (u, v, 0) of G plus omega x R r (omega = (p, q, r) the Euler angles'
+    rates, R = Ry(theta) Rx(phi)), turned back by R^T. Heeled, the horizontal sway velocity meets a
+    foil or the hull's centreplane at v cos(phi) (the heave velocity is left out with the waves'
+    orbital velocities: the ship heaves with the water)."""
+    c, sn, u, v = _heading_velocities(m, s)
+    cp = math.cos(s[S_ROLL])
+    sp = math.sin(s[S_ROLL])
+    ct = math.cos(s[S_PITCH])
+    st = math.sin(s[S_PITCH])
+    pr = s[S_RATE + S_ROLL]
+    qr = s[S_RATE + S_PITCH]
+    r = s[S_RATE + S_YAW]
+    rx, ry, rz = _rotate(x, 0.0, z, cp, sp, ct, st)
+    vx = u + qr * rz - r * ry
+    vy = v + r * rx - pr * rz
+    vz = pr * ry - qr * rx
+    return ct * vx - st * vz, cp * vy + sp * (st * vx + ct * vz)
+
+
+@njit(cache=True, inline="always")
+def _add_body_load(fb_x, fb_y, mb_x, mb_z, x, z, cp, sp, ct, st, f):
+    """Add to ``f`` (6,) (heading frame, about G) the load given in body axes: the force (fb_x, fb_y,
+    0) [N] at the body point (x, 0, z) [m] and the moment (mb_x, 0, mb_z) [N m]."""
+    fx, fy, fz = _rotate(fb_x, fb_y, 0.0, cp, sp, ct, st)
+    rx, ry, rz = _rotate(x, 0.0, z, cp, sp, ct, st)
+    mx, my, mz = _rotate(mb_x, 0.0, mb_z, cp, sp, ct, st)
+    f[0] += fx
+    f[1] += fy
+    f[2] += fz
+    f[3] += mx + ry * fz - rz * fy
+    f[4] += my + rz * fx - rx * fz
+    f[5] += mz + rx * fy - ry * fx
+
+
 @njit(cache=True)
 def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     """Add resistance, thrust, hull manoeuvring forces (linear derivatives and cross-flow drag of
     the ``strips`` (nst, 2): x from G [m] and 1/2 rho T C_D dx [kg/m]) and foil forces to the loads
     ``f`` (6,) (force and moment about G in the heading frame). ``modes`` (nf + 2,): the foils' lift
-    branches first (``_foil_force``; -1: from the angle of attack)."""
+    branches first (``_foil_force``; -1: from the angle of attack).
+
+    The hull's side force and yaw moment and the foils' forces are found in body axes, from the
+    flow's body-axis velocities (``_body_flow``), and turned into the heading frame with their
+    moments about G: heeled by phi, a foil meets the sway velocity at v cos(phi) and its force,
+    normal to its span, has the horizontal part cos(phi) of it, so its lift's horizontal part goes
+    as cos^2(phi) (taken in the heading frame with the span vertical, it was overstated by 1/cos(phi)
+    to 1/cos^2(phi): 15-33 % at 30 degree of roll, 41-100 % at 45), with a vertical part sin(phi) and
+    the foil's pitch moment."""
     rho = p[P_RHO]
     c, sn, u, v = _heading_velocities(m, s)
-    r = s[S_RATE + S_YAW]
-    pr = s[S_RATE + S_ROLL]
+    cp = math.cos(s[S_ROLL])
+    sp = math.sin(s[S_ROLL])
+    ct = math.cos(s[S_PITCH])
+    st = math.sin(s[S_PITCH])
     # resistance on the ITTC-57 line with the form factor, and the constant thrust
     re = abs(u) * m[M_LNU]
     cf = 0.075 / (math.log10(max(re, 1e3)) - 2.0) ** 2  # ITTC 1957 model-ship correlation line
     fx = m[M_THRUST] - m[M_RES] * cf * u * abs(u)
-    # linear hull manoeuvring forces about midships (x = 0), with midships' sway velocity
-    # v - x_G r, scaled by the surge velocity
-    vm = v - p[P_XG] * r
-    fy = u * (m[M_YV] * vm + m[M_YR] * r)
-    nz = u * (m[M_NV] * vm + m[M_NR] * r) - p[P_XG] * fy
     # the surge row of the added mass's -C_A nu (Fossen): (A22 v + A26 r) r, quadratic, so not in
     # the linear derivatives (the inertia term is -A_b d(u, v, r)/dt, ``_horizontal_added_mass``)
+    r = s[S_RATE + S_YAW]
     ab = m[M_AB:M_AB + 9]
     fx += (ab[4] * v + 0.5 * (ab[5] + ab[7]) * r) * r
-    # cross-flow drag: each strip's lateral velocity v + r x meets the drag of a 2-D section
+    f[0] += fx
+    # linear hull manoeuvring forces about midships (x = 0) in body axes, with midships' sway
+    # velocity v_b - x_G r_b, scaled by the surge velocity; r_b the body yaw rate
+    ub, vb = _body_flow(m, s, 0.0, 0.0)
+    rb = -sp * s[S_RATE + S_PITCH] + cp * (st * s[S_RATE + S_ROLL] + ct * r)
+    vm = vb - p[P_XG] * rb
+    fy = ub * (m[M_YV] * vm + m[M_YR] * rb)
+    nz = ub * (m[M_NV] * vm + m[M_NR] * rb) - p[P_XG] * fy
+    # cross-flow drag: each strip's lateral velocity v_b + r_b x meets the drag of a 2-D section
     for i in range(strips.shape[0]):
-        vl = v + r * strips[i, 0]
+        vl = vb + rb * strips[i, 0]
         dy = -strips[i, 1] * vl * abs(vl)
         fy += dy
         nz += strips[i, 0] * dy
-    kx = -m[M_ZH] * fy
+    # the side force acts M_ZH above G, the yaw moment about G's body z axis
+    _add_body_load(0.0, fy, 0.0, nz, 0.0, m[M_ZH], cp, sp, ct, st, f)
     for j in range(foils.shape[0]):
         xf = foils[j, F_X]
         zf = foils[j, F_Z]
         dl = delta if foils[j, F_RUDDER] != 0.0 else 0.0
-        # velocity of the foil centre: (u, v + r x_f - p z_f)
-        lx, ly = _foil_force(u, v + r * xf - pr * zf, dl, rho, foils[j, F_AREA], foils[j, F_CLA],
-                             foils[j, F_STALL], foils[j, F_TRAIL], foils[j, F_AR], foils[j, F_CN], modes[j])
-        fx += lx
-        fy += ly
-        nz += xf * ly
-        kx -= zf * ly
-    f[0] += fx
-    f[1] += fy
-    f[3] += kx
-    f[5] += nz
+        uf, vf = _body_flow(m, s, xf, zf)
+        lx, ly = _foil_force(uf, vf, dl, rho, foils[j, F_AREA], foils[j, F_CLA], foils[j, F_STALL],
+                             foils[j, F_TRAIL], foils[j, F_AR], foils[j, F_CN], modes[j])
+        _add_body_load(lx, ly, 0.0, 0.0, xf, zf, cp, sp, ct, st, f)
 
 
 @njit(cache=True)
@@ -724,14 +770,12 @@ def _modes(m, foils, s, helm, cur, out):
     of ``cur`` (the modes held so far; entries < -1: none) is kept while its margin (radians, or
     radians per second for the servo's rate) exceeds -MODE_BAND, so that a switch once located is
     not undone by the round-off between the interpolant it was located on and the RK4 state."""
-    c, sn, u, v = _heading_velocities(m, s)
-    r = s[S_RATE + S_YAW]
-    pr = s[S_RATE + S_ROLL]
     d = s[S_RUDDER]
     nf = foils.shape[0]
     for j in range(nf):
         dl = d if foils[j, F_RUDDER] != 0.0 else 0.0
-        a = _attack(u, v + r * foils[j, F_X] - pr * foils[j, F_Z], dl)
+        uf, vf = _body_flow(m, s, foils[j, F_X], foils[j, F_Z])
+        a = _attack(uf, vf, dl)
         if cur[j] >= 0 and _lift_margin(a, foils[j, F_STALL], foils[j, F_TRAIL], cur[j]) > -MODE_BAND:
             out[j] = cur[j]
         else:

@@ -23,6 +23,11 @@ instantaneous positions, and the forces a free course needs:
   (eq 6, "groundboarded"), lift slope pi A_R / 2 below A_R = 2 (eq 7) and 2 pi A_R / (A_R + 2)
   above (eq 8), stall at 24 degree and trailing-edge stall at 12 degree (paper 004's table after
   eq 9, "Foils");
+* the hull's side force and yaw moment and the foils' forces in body axes: from the flow's
+  body-axis velocity (heeled by phi, the sway velocity meets the centreplane and the foils at
+  v cos(phi)), acting normal to the centreplane, turned into the heading frame with their moments
+  about G (``_kernels_6dof._manoeuvring_loads``): a heeled foil's horizontal lift goes as
+  cos^2(phi), and its vertical part and the foils' pitch moment are kept;
 * the PD autopilot and the rudder servo of paper 004 eqs 30-34: G_a 0.9, G_b 20 s, proportional
   band 5 degree, slew rate 5.5 degree/s (tau = P_B / R_m), maximum 35 degree.
 
