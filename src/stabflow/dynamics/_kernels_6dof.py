@@ -68,7 +68,8 @@ M_KEEL_LINE = 33   # 1: the stations where the rolled, pitched and yawed hull pu
 #                    and the tilted sections' horizontal loads (``_tilt_loads``); 0: the 3-DOF model's
 #                    placement, on G's axis (the constrained-case comparison)
 M_WL_HEIGHT = 34   # calm-water waterline height above the body origin at G's station [m] (``_station_wave``)
-N_M = M_WL_HEIGHT + 1
+M_TRIM = 35        # calm-water trim theta_0 [rad]: the manoeuvring loads' attitude is the pitch from it
+N_M = M_TRIM + 1
 # optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
 # :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then
 # the poles (re, im) and the residues (re, im) in (pole, i, j) order, then the forward-speed flag
@@ -475,24 +476,38 @@ def _heading_velocities(m, s):
 
 
 @njit(cache=True, inline="always")
+def _attitude(m, s):
+    """(cos, sin) of the roll phi and of the pitch from the calm-water trim theta - theta_0: the
+    attitude of the manoeuvring loads (``_manoeuvring_loads``), whose derivatives and foils refer to
+    the ship at its trim."""
+    th = s[S_PITCH] - m[M_TRIM]
+    return math.cos(s[S_ROLL]), math.sin(s[S_ROLL]), math.cos(th), math.sin(th)
+
+
+@njit(cache=True, inline="always")
+def _flow_rates(m, s):
+    """Angular velocity (heading frame) that the manoeuvring loads' flow sees [rad/s]: the roll and
+    yaw rates' exact part, (phi' cos(theta), 0, psi' - phi' sin(theta)) with theta from the trim
+    (R = Rz(psi) Ry(theta) Rx(phi)); the pitch rate is left out with the heave velocity, since
+    heave and pitch follow the water while the waves' orbital velocities are not modelled."""
+    cp, sp, ct, st = _attitude(m, s)
+    pr = s[S_RATE + S_ROLL]
+    return ct * pr, s[S_RATE + S_YAW] - st * pr
+
+
+@njit(cache=True, inline="always")
 def _body_flow(m, s, x, z):
     """Velocity (u_b, v_b) [m/s] through still water of the body point (x, 0, z) from G [m], in body
-    axes: the heading frame's (u, v, 0) of G plus omega x R r (omega = (p, q, r) the Euler angles'
-    rates, R = Ry(theta) Rx(phi)), turned back by R^T. Heeled, the horizontal sway velocity meets a
-    foil or the hull's centreplane at v cos(phi) (the heave velocity is left out with the waves'
-    orbital velocities: the ship heaves with the water)."""
+    axes: the heading frame's (u, v, 0) of G plus omega x R r (omega = (w_x, 0, w_z) of
+    ``_flow_rates``, R = Ry(theta - theta_0) Rx(phi)), turned back by R^T. Heeled, the horizontal
+    sway velocity meets a foil or the hull's centreplane at v cos(phi)."""
     c, sn, u, v = _heading_velocities(m, s)
-    cp = math.cos(s[S_ROLL])
-    sp = math.sin(s[S_ROLL])
-    ct = math.cos(s[S_PITCH])
-    st = math.sin(s[S_PITCH])
-    pr = s[S_RATE + S_ROLL]
-    qr = s[S_RATE + S_PITCH]
-    r = s[S_RATE + S_YAW]
+    cp, sp, ct, st = _attitude(m, s)
+    wx, wz = _flow_rates(m, s)
     rx, ry, rz = _rotate(x, 0.0, z, cp, sp, ct, st)
-    vx = u + qr * rz - r * ry
-    vy = v + r * rx - pr * rz
-    vz = pr * ry - qr * rx
+    vx = u - wz * ry
+    vy = v + wz * rx - wx * rz
+    vz = wx * ry
     return ct * vx - st * vz, cp * vy + sp * (st * vx + ct * vz)
 
 
@@ -527,10 +542,7 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     the foil's pitch moment."""
     rho = p[P_RHO]
     c, sn, u, v = _heading_velocities(m, s)
-    cp = math.cos(s[S_ROLL])
-    sp = math.sin(s[S_ROLL])
-    ct = math.cos(s[S_PITCH])
-    st = math.sin(s[S_PITCH])
+    cp, sp, ct, st = _attitude(m, s)
     # resistance on the ITTC-57 line with the form factor, and the constant thrust
     re = abs(u) * m[M_LNU]
     cf = 0.075 / (math.log10(max(re, 1e3)) - 2.0) ** 2  # ITTC 1957 model-ship correlation line
@@ -542,9 +554,10 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     fx += (ab[4] * v + 0.5 * (ab[5] + ab[7]) * r) * r
     f[0] += fx
     # linear hull manoeuvring forces about midships (x = 0) in body axes, with midships' sway
-    # velocity v_b - x_G r_b, scaled by the surge velocity; r_b the body yaw rate
+    # velocity v_b - x_G r_b, scaled by the surge velocity; r_b the body yaw rate, (R^T omega)_z
     ub, vb = _body_flow(m, s, 0.0, 0.0)
-    rb = -sp * s[S_RATE + S_PITCH] + cp * (st * s[S_RATE + S_ROLL] + ct * r)
+    wx, wz = _flow_rates(m, s)
+    rb = cp * (st * wx + ct * wz)
     vm = vb - p[P_XG] * rb
     fy = ub * (m[M_YV] * vm + m[M_YR] * rb)
     nz = ub * (m[M_NV] * vm + m[M_NR] * rb) - p[P_XG] * fy

@@ -27,7 +27,10 @@ instantaneous positions, and the forces a free course needs:
   body-axis velocity (heeled by phi, the sway velocity meets the centreplane and the foils at
   v cos(phi)), acting normal to the centreplane, turned into the heading frame with their moments
   about G (``_kernels_6dof._manoeuvring_loads``): a heeled foil's horizontal lift goes as
-  cos^2(phi), and its vertical part and the foils' pitch moment are kept;
+  cos^2(phi), and its vertical part and the foils' pitch moment are kept; the attitude is the roll
+  and the pitch from the calm-water trim (the derivatives refer to the trimmed ship), and the flow
+  takes the roll and yaw rates but not the pitch rate nor the heave velocity, which follow the
+  water while the waves' orbital velocities are not modelled;
 * the PD autopilot and the rudder servo of paper 004 eqs 30-34: G_a 0.9, G_b 20 s, proportional
   band 5 degree, slew rate 5.5 degree/s (tau = P_B / R_m), maximum 35 degree.
 
@@ -322,6 +325,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     # the calm waterline's height above the keel at G's station, body axes (``_station_wave``)
     h0 = K._origin_height(rest[K.S_Z], 0.0, rest[K.S_PITCH], lcg, kg)
     m[K6.M_WL_HEIGHT] = (lcg * np.sin(rest[K.S_PITCH]) - h0) / np.cos(rest[K.S_PITCH])
+    m[K6.M_TRIM] = rest[K.S_PITCH]
     decay = section_decay(sec, h0, float(rest[K.S_PITCH])) if dphi_dzdt else None
     if memory is not None:
         from stabflow.dynamics.radiation import memory_parameters, transom
