@@ -486,28 +486,28 @@ def _attitude(m, s):
 
 @njit(cache=True, inline="always")
 def _flow_rates(m, s):
-    """Angular velocity (heading frame) that the manoeuvring loads' flow sees [rad/s]: the roll and
-    yaw rates' exact part, (phi' cos(theta), 0, psi' - phi' sin(theta)) with theta from the trim
-    (R = Rz(psi) Ry(theta) Rx(phi)); the pitch rate is left out with the heave velocity, since
-    heave and pitch follow the water while the waves' orbital velocities are not modelled."""
+    """Angular velocity (w_x, w_y, w_z) [rad/s] in the heading frame from the Euler angles' rates,
+    (phi' cos(theta), theta', psi' - phi' sin(theta)) for R = Rz(psi) Ry(theta) Rx(phi), theta
+    from the trim."""
     cp, sp, ct, st = _attitude(m, s)
     pr = s[S_RATE + S_ROLL]
-    return ct * pr, s[S_RATE + S_YAW] - st * pr
+    return ct * pr, s[S_RATE + S_PITCH], s[S_RATE + S_YAW] - st * pr
 
 
 @njit(cache=True, inline="always")
 def _body_flow(m, s, x, z):
-    """Velocity (u_b, v_b) [m/s] through still water of the body point (x, 0, z) from G [m], in body
-    axes: the heading frame's (u, v, 0) of G plus omega x R r (omega = (w_x, 0, w_z) of
-    ``_flow_rates``, R = Ry(theta - theta_0) Rx(phi)), turned back by R^T. Heeled, the horizontal
-    sway velocity meets a foil or the hull's centreplane at v cos(phi)."""
+    """Velocity (u_b, v_b) [m/s] of the body point (x, 0, z) from G [m] through still water, in body
+    axes (paper 004 eq 1, whose fluid velocity leaves out the waves' particle velocities): the
+    heading frame's (u, v, z') of G plus omega x R r (omega of ``_flow_rates``, R = Ry(theta -
+    theta_0) Rx(phi)), turned back by R^T. Heeled, the horizontal sway velocity meets a foil or
+    the hull's centreplane at v cos(phi), and the heave velocity at z' sin(phi)."""
     c, sn, u, v = _heading_velocities(m, s)
     cp, sp, ct, st = _attitude(m, s)
-    wx, wz = _flow_rates(m, s)
+    wx, wy, wz = _flow_rates(m, s)
     rx, ry, rz = _rotate(x, 0.0, z, cp, sp, ct, st)
-    vx = u - wz * ry
+    vx = u + wy * rz - wz * ry
     vy = v + wz * rx - wx * rz
-    vz = wx * ry
+    vz = s[S_RATE + S_Z] + wx * ry - wy * rx
     return ct * vx - st * vz, cp * vy + sp * (st * vx + ct * vz)
 
 
@@ -556,8 +556,8 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     # linear hull manoeuvring forces about midships (x = 0) in body axes, with midships' sway
     # velocity v_b - x_G r_b, scaled by the surge velocity; r_b the body yaw rate, (R^T omega)_z
     ub, vb = _body_flow(m, s, 0.0, 0.0)
-    wx, wz = _flow_rates(m, s)
-    rb = cp * (st * wx + ct * wz)
+    wx, wy, wz = _flow_rates(m, s)
+    rb = -sp * wy + cp * (st * wx + ct * wz)
     vm = vb - p[P_XG] * rb
     fy = ub * (m[M_YV] * vm + m[M_YR] * rb)
     nz = ub * (m[M_NV] * vm + m[M_NR] * rb) - p[P_XG] * fy
