@@ -493,8 +493,8 @@ def test_records_converge_with_the_step(trawler):
     Exact clipping, measured: 5.8e-7 at 0.05 s and 4.0e-8 at 0.025 s (ratio 14.4; RK4's 16); with
     the hull and foil loads in body axes from the ship's whole motion (2026-12-07) 6.2e-7, 4.1e-8
     and 2.3e-9 at 0.05, 0.025 and 0.0125 s. The tables' path (the default) is held to the floor:
-    both steps within 3e-6 of dt 0.00625 s before, 5e-6 since (the heave velocity now in the
-    foils' and hull's flow; 4.1e-6 and 1.1e-6 measured)."""
+    both steps within 5e-6 of dt 0.00625 s (4.1e-6 and 1.1e-6 measured; 1.7e-6 and 1.2e-6 before the
+    body-axis loads)."""
     from stabflow.waves.seaway import Seaway
 
     ship, sec, st, co, tabs, ab = trawler
@@ -537,16 +537,15 @@ def test_event_location_keeps_rk4_order_through_stall_slew_and_stop(trawler):
     slew limit and its 35-degree stop and the rudder foil through its stall angle within 30 s (each
     mode switches at least once). The switches are located within the step, so the record still
     converges at RK4's order: measured, roll and yaw over 30 s against dt = 0.00625 s are within
-    9.1e-4 at dt 0.2 s and 6.8e-5 at 0.1 s (ratio 13; fourth order 16), with seed 17; with the
-    hull and foil loads in body axes (2026-12-07) that seed's rudder no longer reaches its stop in
-    30 s, and seed 18 (1 stall, 8 slew and 3 stop switches) gives 1.5e-4, 1.1e-5 and 1.3e-6 at dt
-    0.2, 0.1 and 0.05 s (ratios 13.7 and 8.5). Resolved only to the step,
+    9.1e-4 at dt 0.2 s and 6.8e-5 at 0.1 s (ratio 13; fourth order 16); with the hull and foil
+    loads in body axes from the ship's whole motion (2026-12-07; 1 stall, 5 slew and 2 stop
+    switches) 8.6e-4, 7.7e-5 and 3.5e-6 at dt 0.2, 0.1 and 0.05 s (ratios 11.1 and 22). Resolved only to the step,
     as before the event location, the same sea's records were 1-2 % off at 0.1 s and converged at
     first order."""
     from stabflow.waves.seaway import Seaway
 
     model = six_dof(trawler, heading=45.0)
-    waves = Seaway(kind="pierson_moskowitz", hs=4.0).components(18, 0)
+    waves = Seaway(kind="pierson_moskowitz", hs=4.0).components(17, 0)
     states, _, status = run_six_dof(model, waves, 30.0, 0.00625, dtype=np.float64)
     assert status == K6.OK
     assert min(_switches(model, states)) >= 1, _switches(model, states)
@@ -987,6 +986,7 @@ def test_heeled_hull_and_foil_loads_in_body_axes(trawler):
     G) at 30 degree of roll and 4 of pitch, with all rates and a stalled rudder."""
     model = six_dof(trawler)
     p, m, foils, strips = model.p, model.m.copy(), model.foils, model.strips
+    assert m[K6.M_TRIM] == model.s0[K.S_PITCH] != 0.0  # the attitude's pitch is taken from the trim
     s = np.zeros(K6.N_STATE6)
     phi, theta, psi = np.radians(30.0), np.radians(4.0), np.radians(12.0)
     s[K.S_ROLL], s[K.S_PITCH], s[K.S_YAW] = phi, theta, psi

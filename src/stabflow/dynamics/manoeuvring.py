@@ -30,9 +30,11 @@ instantaneous positions, and the forces a free course needs:
   cos^2(phi), and its vertical part and the foils' pitch moment are kept. The flow is paper 004's
   eq 1: the ship's whole velocity and rotation (heave and pitch rates too), without the waves'
   particle velocities (as LAMP, paper 004 section 2.2.2), in the axes of the ship at its calm-water
-  trim (the derivatives refer to the trimmed ship); the pitch angle alone without the heave and
-  pitch rates (a first version) gave the sq6 condition's first 40 records 11 capsizes, against 1
-  with the heading-frame loads and 1 with eq 1's whole motion;
+  trim (the derivatives refer to the trimmed ship; the roll is taken about the trimmed horizontal
+  axis, which leaves out a yaw rate -phi' sin(theta_0), 1e-3 rad/s on the trawler); the pitch angle
+  alone without the heave and pitch rates (a first version) gave the sq6 condition's first 40
+  records 11 capsizes, against 1 with the heading-frame loads and 3 with eq 1's whole motion (1
+  with the pitch from the baseline instead of the trim);
 * the PD autopilot and the rudder servo of paper 004 eqs 30-34: G_a 0.9, G_b 20 s, proportional
   band 5 degree, slew rate 5.5 degree/s (tau = P_B / R_m), maximum 35 degree.
 
