@@ -87,3 +87,26 @@ def test_criteria_c2_section_renders():
     nospeed = _env().from_string('{% import "_macros.md.j2" as m %}' + block).render(
         c2={**c2, "value": math.nan, "service": math.nan, "rows": []})
     assert "no service speed in the ship config" in nospeed
+
+
+def test_paper_004_comparison_matches_cases_by_their_wave():
+    """Each heavy-loading case gets paper 004's outcome by its wave (regular wavelength with H 1.8 m,
+    or Hs), and capsize-or-not is compared where the paper states it (not IR-3)."""
+    import numpy as np
+    import xarray as xr
+
+    from stabflow.report.book import paper_004_comparison
+
+    cases = ["R-1", "R-2", "R-3", "R-4", "IR-1", "IR-2", "IR-3"]
+    lam = [21.3, 30.5, 42.7, 85.3, np.nan, np.nan, np.nan]
+    height = [1.8] * 4 + [3.1, 4.0, 4.6]
+    cap = [[0, 1, 1, 0, 1, 1, 1], [0] * 7]
+    d = xr.Dataset({"capsized": (("loading", "case"), np.array(cap)), "wavelength": ("case", lam),
+                    "wave_height": ("case", height)}, coords={"loading": ["heavy", "tank_test"], "case": cases})
+    texts, versus = paper_004_comparison(d)
+    assert texts["R-2"].startswith("broach and capsize") and texts["IR-3"].startswith("not stated")
+    assert versus["compared"] == 6
+    assert versus["agree"] == ["R-2", "R-3", "R-4", "IR-2"] and versus["differ"] == ["R-1", "IR-1"]
+    # a wave the paper did not run is not compared
+    d2 = d.assign(wave_height=("case", [2.0] * 4 + [3.1, 4.0, 4.6]))
+    assert paper_004_comparison(d2)[1]["compared"] == 2

@@ -438,6 +438,44 @@ def _step_result(results: Path, config: dict, step: str):
     return ship, (_open(p) if p.exists() else None)
 
 
+#: Paper 004's outcomes for *Italian Gold* in its loading (G 0.08 m above the waterline), 10 kn, waves
+#: 45 degree off the stern (its section 4): the text after Fig. 7, "when the wavelength is about 1 to 2
+#: ship lengths, the ship will capsize even though the wave height is only 6 ft (1.8 m)" and R-4 "is
+#: just riding on the wave and does not capsize", Fig. 7's R-2 broaching and capsizing; after Table
+#: 4, "the ship can survive in 10 ft (3.1 m) random sea" and "capsized while the significant wave height
+#: reached 13 ft (4.0 m)"; IR-3's (4.6 m) is not stated in the text. Keyed by the wave: (regular,
+#: wavelength [m]) with H 1.8 m, or (irregular, Hs [m]); value (text, capsized: True / False / None).
+PAPER_004_OUTCOMES = {("regular", 21.3): ("capsize (λ/L ≈ 1-2)", True),
+                      ("regular", 30.5): ("broach and capsize (Fig. 7)", True),
+                      ("regular", 42.7): ("capsize (λ/L ≈ 1-2)", True),
+                      ("regular", 85.3): ("rides the wave, no capsize", False),
+                      ("irregular", 3.1): ("survives", False),
+                      ("irregular", 4.0): ("capsize", True),
+                      ("irregular", 4.6): ("not stated (Fig. 14)", None)}
+
+
+def paper_004_comparison(d: xr.Dataset, loading: str = "heavy") -> tuple[dict, dict]:
+    """Paper 004's outcome beside each case of the broaching step's ``loading`` (the paper's: G 0.08 m
+    above the waterline): ({case: paper's text}, summary with the cases compared, those agreeing on
+    capsize or not, and those that do not). Cases whose wave the paper did not run, or whose outcome it
+    does not state, are not compared."""
+    texts, agree, differ = {}, [], []
+    if loading not in d.loading.values:
+        return texts, {"compared": 0, "agree": agree, "differ": differ}
+    for c in d.case.values:
+        r = d.sel(loading=loading, case=c)
+        lam = float(r.wavelength)
+        key = ("regular", round(lam, 1)) if np.isfinite(lam) and abs(float(r.wave_height) - 1.8) < 1e-9 else \
+            ("irregular", round(float(r.wave_height), 1)) if not np.isfinite(lam) else None
+        if key not in PAPER_004_OUTCOMES:
+            continue
+        text, capsized = PAPER_004_OUTCOMES[key]
+        texts[str(c)] = text
+        if capsized is not None:
+            (agree if bool(int(r.capsized)) == capsized else differ).append(str(c))
+    return texts, {"compared": len(agree) + len(differ), "agree": agree, "differ": differ}
+
+
 def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
     """Paper 004's scenario, the calm-water manoeuvres and the surf-riding thresholds; None if not run."""
     ship, d = _step_result(results, config, "broaching")
@@ -447,6 +485,7 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
     def when(flag, t):
         return f"{float(t):.1f}" if int(flag) else "no"
 
+    paper, versus = paper_004_comparison(d)
     rows = []
     for lo in d.loading.values:
         for c in d.case.values:
@@ -454,6 +493,7 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
             wave = (f"regular λ {float(r.wavelength):g} m, H {float(r.wave_height):g} m" if np.isfinite(float(r.wavelength))
                     else f"PM Hs {float(r.wave_height):g} m")
             rows.append({"loading": str(lo), "kg": float(r.kg), "case": str(c), "wave": wave,
+                         "paper": paper.get(str(c), "—") if str(lo) == "heavy" else "—",
                          "capsize": when(r.capsized, r.capsize_time), "broach": when(r.broach, r.broach_time),
                          "surf": when(r.surf_riding, r.surf_riding_longest),
                          "roll": float(np.nanmax(np.abs(r["roll"]))), "yaw": float(np.nanmax(np.abs(r["yaw"])))})
@@ -519,7 +559,7 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                                                             for c in LINEAR_DERIVATIVES]
                         + [f"{float(d['sway_yaw_eigenvalue']):+.3f}"])
     return _render("broaching.md.j2", ship=ship, a=config["broaching"], decay=bool(int(d.attrs.get("dphi_dzdt", 0))),
-                   rows=rows, foils=foils, derivatives=derivatives,
+                   rows=rows, versus=versus, foils=foils, derivatives=derivatives,
                    der_rows=der_rows,
                    man={"rows": man_rows, "length": L, "b_l": float(d.attrs.get("manoeuvre_breadth", np.nan)) / L,
                         "form_factor": float(mcfg.get("form_factor", 0.0)), "ap": mcfg.get("autopilot", {}),
