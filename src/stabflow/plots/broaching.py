@@ -13,7 +13,7 @@ def motions_figure(ds: xr.Dataset, loading: str, path) -> None:
     case; roll, yaw with the rudder, pitch with heave, sway."""
     d = ds.sel(loading=loading)
     cases = list(d.case.values)
-    fig, axes = plt.subplots(len(cases), 4, figsize=(13, 1.9 * len(cases)), sharex="row")
+    fig, axes = plt.subplots(len(cases), 4, figsize=(13, 1.9 * len(cases)), sharex="row", layout="constrained")
     t = d.time.values
     for i, c in enumerate(cases):
         r = d.sel(case=c)
