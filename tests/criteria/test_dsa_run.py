@@ -71,8 +71,8 @@ def test_headings_stand_for_a_uniform_heading_over_their_span(headings, span, we
     config field."""
     from stabflow import StabflowError
 
-    assert dsa_run.heading_span(headings) == span
     g = dsa_run.cell_grid(Standards(), headings, [5.0])
+    assert g.attrs["heading_span"] == f"{span[0]:g}-{span[1]:g} deg"
     per = g.probability.groupby("heading").sum().values / float(g.probability.sum())
     np.testing.assert_allclose(per, weights, rtol=1e-12)
     if len(headings) > 1:  # the shares are the intervals' lengths over the span

@@ -558,7 +558,7 @@ def test_event_location_keeps_rk4_order_through_stall_slew_and_stop(trawler):
 def _rudder_attack(model, s):
     """The rudder's angle of attack [rad] in state ``s`` (as ``_kernels_6dof._modes`` reads it)."""
     j = int(np.nonzero(model.foils[:, K6.F_RUDDER])[0][0])
-    uf, vf = K6._body_flow(model.m, s, model.foils[j, K6.F_X], model.foils[j, K6.F_Z])
+    uf, vf = K6._body_flow(model.m, s, K6._flow_frame(model.m, s), model.foils[j, K6.F_X], model.foils[j, K6.F_Z])
     return K6._attack(uf, vf, s[K6.S_RUDDER])
 
 

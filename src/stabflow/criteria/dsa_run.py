@@ -168,13 +168,6 @@ def heading_intervals(headings_deg) -> tuple[np.ndarray, np.ndarray]:
     return np.maximum(h - 0.5 * d[0], 0.0), np.minimum(h + 0.5 * d[0], 180.0)
 
 
-def heading_span(headings_deg) -> tuple[float, float]:
-    """(lowest, highest) heading [degree] of the uniform heading ``headings_deg`` stand for
-    (:func:`heading_intervals`)."""
-    a, b = heading_intervals(headings_deg)
-    return float(a[0]), float(b[-1])
-
-
 def cell_seed(master: int, *indices: int) -> int:
     """Seed of one cell and stage from the master seed and the cell's grid indices (independent of
     the grid's order and of the other cells)."""

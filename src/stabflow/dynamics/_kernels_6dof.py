@@ -476,34 +476,29 @@ def _heading_velocities(m, s):
 
 
 @njit(cache=True, inline="always")
-def _attitude(m, s):
-    """(cos, sin) of the roll phi and of the pitch from the calm-water trim theta - theta_0: the
-    attitude of the manoeuvring loads (``_manoeuvring_loads``), whose derivatives and foils refer to
-    the ship at its trim."""
+def _flow_frame(m, s):
+    """(cos phi, sin phi, cos th, sin th, w_x, w_y, w_z) of the manoeuvring loads: the roll phi and the
+    pitch from the calm-water trim th = theta - theta_0 (the derivatives and foils refer to the ship at
+    its trim), and the angular velocity [rad/s] in the heading frame from the Euler angles' rates,
+    (phi' cos th, th', psi' - phi' sin th) for R = Rz(psi) Ry(th) Rx(phi). Found once per evaluation
+    and passed to ``_body_flow`` for each point."""
     th = s[S_PITCH] - m[M_TRIM]
-    return math.cos(s[S_ROLL]), math.sin(s[S_ROLL]), math.cos(th), math.sin(th)
-
-
-@njit(cache=True, inline="always")
-def _flow_rates(m, s):
-    """Angular velocity (w_x, w_y, w_z) [rad/s] in the heading frame from the Euler angles' rates,
-    (phi' cos(theta), theta', psi' - phi' sin(theta)) for R = Rz(psi) Ry(theta) Rx(phi), theta
-    from the trim."""
-    cp, sp, ct, st = _attitude(m, s)
+    ct = math.cos(th)
+    st = math.sin(th)
     pr = s[S_RATE + S_ROLL]
-    return ct * pr, s[S_RATE + S_PITCH], s[S_RATE + S_YAW] - st * pr
+    return (math.cos(s[S_ROLL]), math.sin(s[S_ROLL]), ct, st, ct * pr, s[S_RATE + S_PITCH],
+            s[S_RATE + S_YAW] - st * pr)
 
 
 @njit(cache=True, inline="always")
-def _body_flow(m, s, x, z):
+def _body_flow(m, s, fr, x, z):
     """Velocity (u_b, v_b) [m/s] of the body point (x, 0, z) from G [m] through still water, in body
     axes (paper 004 eq 1, whose fluid velocity leaves out the waves' particle velocities): the
-    heading frame's (u, v, z') of G plus omega x R r (omega of ``_flow_rates``, R = Ry(theta -
-    theta_0) Rx(phi)), turned back by R^T. Heeled, the horizontal sway velocity meets a foil or
-    the hull's centreplane at v cos(phi), and the heave velocity at z' sin(phi)."""
+    heading frame's (u, v, z') of G plus omega x R r (``fr`` = ``_flow_frame(m, s)``: R = Ry(theta -
+    theta_0) Rx(phi) and omega), turned back by R^T. Heeled, the horizontal sway velocity meets a foil
+    or the hull's centreplane at v cos(phi), and the heave velocity at z' sin(phi)."""
     c, sn, u, v = _heading_velocities(m, s)
-    cp, sp, ct, st = _attitude(m, s)
-    wx, wy, wz = _flow_rates(m, s)
+    cp, sp, ct, st, wx, wy, wz = fr
     rx, ry, rz = _rotate(x, 0.0, z, cp, sp, ct, st)
     vx = u + wy * rz - wz * ry
     vy = v + wz * rx - wx * rz
@@ -542,7 +537,8 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     the foil's pitch moment."""
     rho = p[P_RHO]
     c, sn, u, v = _heading_velocities(m, s)
-    cp, sp, ct, st = _attitude(m, s)
+    fr = _flow_frame(m, s)
+    cp, sp, ct, st, wx, wy, wz = fr
     # resistance on the ITTC-57 line with the form factor, and the constant thrust
     re = abs(u) * m[M_LNU]
     cf = 0.075 / (math.log10(max(re, 1e3)) - 2.0) ** 2  # ITTC 1957 model-ship correlation line
@@ -555,8 +551,7 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     f[0] += fx
     # linear hull manoeuvring forces about midships (x = 0) in body axes, with midships' sway
     # velocity v_b - x_G r_b, scaled by the surge velocity; r_b the body yaw rate, (R^T omega)_z
-    ub, vb = _body_flow(m, s, 0.0, 0.0)
-    wx, wy, wz = _flow_rates(m, s)
+    ub, vb = _body_flow(m, s, fr, 0.0, 0.0)
     rb = -sp * wy + cp * (st * wx + ct * wz)
     vm = vb - p[P_XG] * rb
     fy = ub * (m[M_YV] * vm + m[M_YR] * rb)
@@ -573,7 +568,7 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
         xf = foils[j, F_X]
         zf = foils[j, F_Z]
         dl = delta if foils[j, F_RUDDER] != 0.0 else 0.0
-        uf, vf = _body_flow(m, s, xf, zf)
+        uf, vf = _body_flow(m, s, fr, xf, zf)
         lx, ly = _foil_force(uf, vf, dl, rho, foils[j, F_AREA], foils[j, F_CLA], foils[j, F_STALL],
                              foils[j, F_TRAIL], foils[j, F_AR], foils[j, F_CN], modes[j])
         _add_body_load(lx, ly, 0.0, 0.0, xf, zf, cp, sp, ct, st, f)
@@ -785,9 +780,10 @@ def _modes(m, foils, s, helm, cur, out):
     not undone by the round-off between the interpolant it was located on and the RK4 state."""
     d = s[S_RUDDER]
     nf = foils.shape[0]
+    fr = _flow_frame(m, s)
     for j in range(nf):
         dl = d if foils[j, F_RUDDER] != 0.0 else 0.0
-        uf, vf = _body_flow(m, s, foils[j, F_X], foils[j, F_Z])
+        uf, vf = _body_flow(m, s, fr, foils[j, F_X], foils[j, F_Z])
         a = _attack(uf, vf, dl)
         if cur[j] >= 0 and _lift_margin(a, foils[j, F_STALL], foils[j, F_TRAIL], cur[j]) > -MODE_BAND:
             out[j] = cur[j]

@@ -443,15 +443,16 @@ def _step_result(results: Path, config: dict, step: str):
 #: ship lengths, the ship will capsize even though the wave height is only 6 ft (1.8 m)" and R-4 "is
 #: just riding on the wave and does not capsize", Fig. 7's R-2 broaching and capsizing; after Table
 #: 4, "the ship can survive in 10 ft (3.1 m) random sea" and "capsized while the significant wave height
-#: reached 13 ft (4.0 m)"; IR-3's (4.6 m) is not stated in the text. Keyed by the wave: (regular,
-#: wavelength [m]) with H 1.8 m, or (irregular, Hs [m]); value (text, capsized: True / False / None).
-PAPER_004_OUTCOMES = {("regular", 21.3): ("capsize (λ/L ≈ 1-2)", True),
-                      ("regular", 30.5): ("broach and capsize (Fig. 7)", True),
-                      ("regular", 42.7): ("capsize (λ/L ≈ 1-2)", True),
-                      ("regular", 85.3): ("rides the wave, no capsize", False),
-                      ("irregular", 3.1): ("survives", False),
-                      ("irregular", 4.0): ("capsize", True),
-                      ("irregular", 4.6): ("not stated (Fig. 14)", None)}
+#: reached 13 ft (4.0 m)"; IR-3's (4.6 m) is not stated in the text. Keyed by the wave as the broaching
+#: step writes it: (wavelength [m], H [m]) of a regular wave (Table 3), (None, Hs [m]) of a
+#: Pierson-Moskowitz sea (Table 4); value (text, capsized: True / False / None).
+PAPER_004_OUTCOMES = {(21.3, 1.8): ("capsize (λ/L ≈ 1-2)", True),
+                      (30.5, 1.8): ("broach and capsize (Fig. 7)", True),
+                      (42.7, 1.8): ("capsize (λ/L ≈ 1-2)", True),
+                      (85.3, 1.8): ("rides the wave, no capsize", False),
+                      (None, 3.1): ("survives", False),
+                      (None, 4.0): ("capsize", True),
+                      (None, 4.6): ("not stated (Fig. 14)", None)}
 
 
 def paper_004_comparison(d: xr.Dataset, loading: str = "heavy") -> tuple[dict, dict]:
@@ -465,8 +466,7 @@ def paper_004_comparison(d: xr.Dataset, loading: str = "heavy") -> tuple[dict, d
     for c in d.case.values:
         r = d.sel(loading=loading, case=c)
         lam = float(r.wavelength)
-        key = ("regular", round(lam, 1)) if np.isfinite(lam) and abs(float(r.wave_height) - 1.8) < 1e-9 else \
-            ("irregular", round(float(r.wave_height), 1)) if not np.isfinite(lam) else None
+        key = (round(lam, 1) if np.isfinite(lam) else None, round(float(r.wave_height), 1))
         if key not in PAPER_004_OUTCOMES:
             continue
         text, capsized = PAPER_004_OUTCOMES[key]

@@ -536,6 +536,14 @@ def sample_counts(steps, lost=None) -> np.ndarray:
     return n if lost is None else np.where(np.asarray(lost) != 0, 0.0, n)
 
 
+def record_samples(ens: xr.Dataset) -> xr.DataArray:
+    """Samples in each record's statistics of a merged ensemble (:func:`sample_counts`; shards
+    written before 2026-12-07 have no ``warmup_lost``)."""
+    lost = ens["warmup_lost"].values if "warmup_lost" in ens else None
+    return xr.DataArray(sample_counts(ens["steps"].values, lost), coords={"record": ens["record"].values},
+                        dims="record")
+
+
 def merge(shards: list[xr.Dataset]) -> xr.Dataset:
     """Merge shard datasets (in record order) into the condition's ensemble dataset, with derived
     statistics: mean, standard deviation, skewness and kurtosis per DOF, roll autocorrelation,

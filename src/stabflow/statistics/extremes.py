@@ -127,10 +127,9 @@ def block_estimates(data_rec, data_t, data_v, cap_rec, cap_t, recs, hours, u_lis
 def block_sigma(ens: xr.Dataset, records: np.ndarray) -> float:
     """Roll standard deviation [degree] of a set of records, from the streamed sums."""
     sel = ens["moment_sums"].sel(record=records, dof="roll")
-    from stabflow.statistics.ensemble import sample_counts
+    from stabflow.statistics.ensemble import record_samples
 
-    lost = ens["warmup_lost"].sel(record=records).values if "warmup_lost" in ens else None
-    n = float(sample_counts(ens["steps"].sel(record=records).values, lost).sum())
+    n = float(record_samples(ens).sel(record=records).sum())
     m1 = float(sel.sel(order=1).sum()) / n
     return float(np.sqrt(float(sel.sel(order=2).sum()) / n - m1**2))
 

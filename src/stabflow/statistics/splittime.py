@@ -322,10 +322,9 @@ def analyse(model: Model, ens: xr.Dataset, cfg: dict, threads: int = 1, progress
     rec_all = ens["record"].values
     sample = rec_all[:nrec]
     in_s = np.isin(rec_all, sample)
-    from stabflow.statistics.ensemble import sample_counts
+    from stabflow.statistics.ensemble import record_samples
 
-    lost = ens["warmup_lost"].values[in_s] if "warmup_lost" in ens else None
-    n_samples = int(sample_counts(ens["steps"].values[in_s], lost).sum())
+    n_samples = int(record_samples(ens).values[in_s].sum())
     hours = float(ens["steps"].values[in_s].sum()) * dt / 3600.0
     bf_k = int(ens["capsized"].values[~in_s].sum())
     bf_hours = float(ens["steps"].values[~in_s].sum()) * dt / 3600.0
