@@ -133,9 +133,7 @@ def _section_and_figures(a, step: str, names) -> tuple[dict, dict | None]:
 
 
 def _broaching(a):
-    cfg, figs = _section_and_figures(a, "broaching", lambda c: (
-        [f"motions_{k}" for k in c["broaching"]["loadings"]] + ["strip", "manoeuvres"]
-        + (["map"] if "map" in c["broaching"] else [])))
+    cfg, figs = _section_and_figures(a, "broaching", steps.broaching_figure_names)
     return steps.run_broaching(cfg, cfg.get("ships_dir", "config/ships"), a.output, a.validation, figs,
                                radiation_nc=a.radiation)
 

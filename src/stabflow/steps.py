@@ -505,6 +505,15 @@ def run_capsize_1dof(cfg: dict, out_nc, validation_nc, figure=None, threads: int
     return ds
 
 
+def broaching_figure_names(config: dict) -> list[str]:
+    """Figure stems of the broaching step: motions per loading, the snapshot strip, the manoeuvres,
+    the resistance curve and, with a ``map`` section, the probability map."""
+    if "broaching" not in config:
+        return []
+    b = config["broaching"]
+    return [f"motions_{k}" for k in b["loadings"]] + ["strip", "manoeuvres", "resistance"] + (["map"] if "map" in b else [])
+
+
 def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict | None = None,
                   progress: bool = True, radiation_nc=None) -> xr.Dataset:
     """broaching step (issue 17): paper 004's stern-quartering cases with the 6-DOF model, calm-water
@@ -514,7 +523,8 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
     from stabflow.dynamics.broaching import (manoeuvre_checks, map_step_row, probability_map, scenario,
                                              scenario_step_row)
     from stabflow.io import write_netcdf
-    from stabflow.plots.broaching import manoeuvres_figure, map_figure, motions_figure, strip_figure
+    from stabflow.plots.broaching import (manoeuvres_figure, map_figure, motions_figure, resistance_figure,
+                                          strip_figure)
     from stabflow.validation import checks_dataset
 
     cfg = config["broaching"]
@@ -542,6 +552,7 @@ def run_broaching(config: dict, ships_dir, out_nc, validation_nc, figures: dict 
         ds.attrs.update(strip_case="R-2" if "R-2" in cases else cases[0], strip_loading=str(ds.loading.values[0]))
         strip_figure(ds, ds.attrs["strip_loading"], ds.attrs["strip_case"], figures["strip"])
         manoeuvres_figure(tracks, zigzags, figures["manoeuvres"])
+        resistance_figure(ds, figures["resistance"])
         if "map" in figures:
             map_figure(ds, figures["map"])
     write_netcdf(ds, out_nc)

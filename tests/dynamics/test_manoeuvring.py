@@ -11,9 +11,10 @@ from stabflow.dynamics import _kernels as K
 from stabflow.dynamics import _kernels_6dof as K6
 from stabflow.dynamics.hydro import bem_mesh, manoeuvring_added_mass
 from stabflow.dynamics.manoeuvring import (Autopilot, Foil, Manoeuvring, build_six_dof, crossflow_drag_coefficient,
-                                           ittc57_friction, lift_slope, run_six_dof, simulate_six_dof, six_dof_dataset,
+                                           lift_slope, run_six_dof, simulate_six_dof, six_dof_dataset,
                                            line_waves, wave_line)
 from stabflow.dynamics.model import parameters
+from stabflow.dynamics.resistance import ittc57_friction
 from stabflow.dynamics.rigid_body import THREE_DOF
 from stabflow.dynamics.tables import kernel_args, section_tables
 from stabflow.hydrostatics.statics import equilibrium

@@ -5,7 +5,7 @@ from snakemake.utils import validate
 
 from stabflow.config import coerce_numbers, derivative_fit_settings, load_ship, schema, step_settings
 from stabflow.dynamics.derivative import compared_ensembles
-from stabflow.steps import derivative_figure_names
+from stabflow.steps import broaching_figure_names, derivative_figure_names
 
 
 # numbers typed as 8.6e6 reach us as strings from Snakemake's YAML 1.1 loader: read them as numbers
@@ -227,15 +227,7 @@ def broaching_ship():
     return config["broaching"]["ship"] if "broaching" in config else "none"
 
 
-def broaching_figure_names():
-    """Figure stems of the broaching step: motions per loading, the snapshot strip, the manoeuvres."""
-    if "broaching" not in config:
-        return []
-    return ([f"motions_{l}" for l in config["broaching"]["loadings"]] + ["strip", "manoeuvres"]
-            + (["map"] if "map" in config["broaching"] else []))
-
-
-BROACHING_FIGURES = broaching_figure_names()
+BROACHING_FIGURES = broaching_figure_names(config)
 
 
 def capsize_1dof_outputs(which="nc"):

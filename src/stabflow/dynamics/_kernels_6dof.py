@@ -69,7 +69,10 @@ M_KEEL_LINE = 33   # 1: the stations where the rolled, pitched and yawed hull pu
 #                    placement, on G's axis (the constrained-case comparison)
 M_WL_HEIGHT = 34   # calm-water waterline height above the body origin at G's station [m] (``_station_wave``)
 M_TRIM = 35        # calm-water trim theta_0 [rad]: the manoeuvring loads' attitude is the pitch from it
-N_M = M_TRIM + 1
+M_RR_DU = 36       # spacing of the resistance table [m/s] (0: no table, the friction line alone)
+M_RR = 37          # the resistance beyond the friction line at u = 0, du, 2 du, ... [N] (``_resistance``)
+N_RR = 121         # its points (stabflow.dynamics.resistance.TABLE_POINTS)
+N_M = M_RR + N_RR
 # optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
 # :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then
 # the poles (re, im) and the residues (re, im) in (pole, i, j) order, then the forward-speed flag
@@ -522,6 +525,26 @@ def _add_body_load(fb_x, fb_y, mb_x, mb_z, x, z, cp, sp, ct, st, f):
 
 
 @njit(cache=True)
+def _resistance(m, u):
+    """Calm-water resistance [N] at surge velocity ``u`` [m/s], odd in u: the ITTC-57 friction line
+    M_RES C_F(Re) u^2 plus the table (M_RR_DU, M_RR) of the rest, linear between its points and
+    growing as u^2 from its last (:func:`stabflow.dynamics.resistance.kernel_resistance`)."""
+    au = abs(u)
+    cf = 0.075 / (math.log10(max(au * m[M_LNU], 1e3)) - 2.0) ** 2  # ITTC 1957 model-ship correlation line
+    r = m[M_RES] * cf * au * au
+    du = m[M_RR_DU]
+    if du > 0.0:
+        t = au / du
+        i = int(t)
+        if i < N_RR - 1:
+            w = t - i
+            r += (1.0 - w) * m[M_RR + i] + w * m[M_RR + i + 1]
+        else:
+            r += m[M_RR + N_RR - 1] * (t / (N_RR - 1)) ** 2
+    return r if u >= 0.0 else -r
+
+
+@njit(cache=True)
 def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     """Add resistance, thrust, hull manoeuvring forces (linear derivatives and cross-flow drag of
     the ``strips`` (nst, 2): x from G [m] and 1/2 rho T C_D dx [kg/m]) and foil forces to the loads
@@ -539,10 +562,8 @@ def _manoeuvring_loads(p, m, foils, strips, s, delta, f, modes):
     c, sn, u, v = _heading_velocities(m, s)
     fr = _flow_frame(m, s)
     cp, sp, ct, st, wx, wy, wz = fr
-    # resistance on the ITTC-57 line with the form factor, and the constant thrust
-    re = abs(u) * m[M_LNU]
-    cf = 0.075 / (math.log10(max(re, 1e3)) - 2.0) ** 2  # ITTC 1957 model-ship correlation line
-    fx = m[M_THRUST] - m[M_RES] * cf * u * abs(u)
+    # calm-water resistance and the constant thrust
+    fx = m[M_THRUST] - _resistance(m, u)
     # the surge row of the added mass's -C_A nu (Fossen): (A22 v + A26 r) r, quadratic, so not in
     # the linear derivatives (the inertia term is -A_b d(u, v, r)/dt, ``_horizontal_added_mass``)
     r = s[S_RATE + S_YAW]

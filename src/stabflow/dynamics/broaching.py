@@ -82,7 +82,7 @@ def manoeuvring_from_ship(ship: Ship, sec: Sections, st: xr.Dataset, heading_deg
     sets = profile_derivative_sets(ship, st) if hull == "slender_body" and not set(LINEAR_DERIVATIVES) <= set(der) \
         else None
     return Manoeuvring(foils=foils, autopilot=autopilot, derivatives=der, hull=hull,
-                       form_factor=cfg.get("form_factor", 0.0),
+                       form_factor=cfg.get("form_factor", 0.0), resistance=dict(cfg.get("resistance", {})),
                        side_force_height=cfg.get("side_force_height"), added_mass=added,
                        radiation_forward_speed=cfg.get("radiation_forward_speed", False), hull_sets=sets)
 
@@ -215,6 +215,7 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
     from dataclasses import replace
 
     from stabflow.dynamics.manoeuvres import trajectory, turning_circle, zigzag_overshoots
+    from stabflow.dynamics.resistance import reference_rows
     from stabflow.dynamics.surf_riding import melnikov_threshold, simulated_threshold
     from stabflow.validation import Check
 
@@ -381,6 +382,8 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
                 rows.append(Check.failed(name, "the bisection bracket [0.3 U_cr, 0.98 c] did not hold a threshold",
                                          "-", ref, kind="consistency", tolerance=0.05))
     rows.extend(_following_wave_load_rows(ship, model, lams, h, thr[:, 0], out, mc["surf_riding"]))
+    res = resistance_curve(model, sorted(float(x) for x in cfg["regular"]["wavelengths"]), h)
+    rows.extend(reference_rows())
     if model.memory is not None:
         rows.extend(radiation_checks(bem_from_dataset(radiation), model.memory))
         out["memory_poles"] = float(len(model.memory.poles))
@@ -392,10 +395,44 @@ def manoeuvre_checks(ship: Ship, cfg: dict, radiation: xr.Dataset | None = None)
     ds["surf_riding_surge_only"] = ("surf_case", thr[:, 1])
     ds["surf_riding_six_dof"] = ("surf_case", thr[:, 2])
     ds["surf_riding_melnikov_wave_force"] = ("surf_case", thr[:, 3])
+    ds = ds.merge(res)
+    ds.attrs.update(res.attrs)
     ds.attrs.update(manoeuvre_length=L, manoeuvre_speed=model.speed,
                     hull_derivatives=str(ship.data.get("manoeuvring", {}).get("hull_derivatives", "clarke")),
                     manoeuvre_breadth=float(statics["bwl"]))  # particulars' breadth: the waterline breadth
     return ds, rows, tracks, zigzags
+
+
+def resistance_curve(model: SixDof, wavelengths, height: float, froude_max: float = 1.2, n: int = 121) -> xr.Dataset:
+    """The 6-DOF model's calm-water resistance R(u) from 0 to ``froude_max`` sqrt(g L), the
+    ITTC-57 friction line on Kato's wetted surface with the form factor beside it (the model's
+    resistance before the wave-making part, for comparison), and the Froude-Krylov surge-force
+    amplitude of regular following waves of ``height`` [m] at ``wavelengths`` [m] with their
+    celerities (:func:`stabflow.dynamics.surf_riding.surge_force`): where the amplitude exceeds R
+    at the celerity, the wave can carry the ship at its speed."""
+    from stabflow.dynamics import _kernels_6dof as K6
+    from stabflow.dynamics.resistance import ittc57_friction
+    from stabflow.dynamics.surf_riding import resistance, surge_force
+
+    u = np.linspace(0.0, froude_max * np.sqrt(G * model.length), n)
+    line = model.resistance["resistance_friction_line_factor"] * np.where(
+        u > 0, ittc57_friction(np.maximum(u * model.m[K6.M_LNU], 1e3)), 0.0) * u**2
+    lams = np.asarray(wavelengths, float)
+    amp = np.array([surge_force(model, lam, height)[0] for lam in lams])
+    ds = xr.Dataset(
+        {"resistance": ("resistance_speed", resistance(model, u),
+                        {"units": "N", "long_name": f"calm-water resistance ({model.resistance['resistance_method']})"}),
+         "resistance_friction_only": ("resistance_speed", line,
+                                      {"units": "N", "long_name": "ITTC-57 friction line on Kato's wetted surface"}),
+         "resistance_wave_surge_amplitude": ("resistance_wave", amp,
+                                             {"units": "N", "long_name": f"FK surge-force amplitude, H {height:g} m"}),
+         "resistance_wave_celerity": ("resistance_wave", np.sqrt(G * lams / (2 * np.pi)),
+                                      {"units": "m/s", "long_name": "wave celerity"})},
+        coords={"resistance_speed": ("resistance_speed", u, {"units": "m/s", "long_name": "surge velocity"}),
+                "resistance_wave": ("resistance_wave", lams, {"units": "m", "long_name": "wavelength"})})
+    ds.attrs.update({k: v for k, v in model.resistance.items()})
+    ds.attrs["resistance_wave_height"] = float(height)
+    return ds
 
 
 #: tolerances of the following-wave load rows (:func:`_following_wave_load_rows`): the mean surge

@@ -54,6 +54,7 @@ from stabflow import StabflowError
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics import _kernels_6dof as K6
 from stabflow.dynamics.model import Coefficients, initial_state, parameters, section_decay
+from stabflow.dynamics.resistance import kernel_resistance
 from stabflow.dynamics.rigid_body import SIX_DOF
 from stabflow.dynamics.roll_damping import NU, friction_radius_area, particulars, section_parameters
 from stabflow.dynamics.tables import SectionTables, kernel_args
@@ -173,11 +174,6 @@ HULL_DERIVATIVES = ("clarke", "slender_body")
 LINEAR_DERIVATIVES = ("yv", "yr", "nv", "nr")
 
 
-def ittc57_friction(reynolds) -> np.ndarray:
-    """Frictional resistance coefficient C_F = 0.075 / (log10 Re - 2)^2 (ITTC 1957 line)."""
-    return 0.075 / (np.log10(np.asarray(reynolds, float)) - 2.0) ** 2
-
-
 def normal_pressure_coefficient(span: float, chord: float) -> float:
     """Kato's coefficient of normal pressure C_N of a flat plate of ``span`` and ``chord`` (paper 004
     eq 14): 1.98 exp(-11 s/C) for s/C < 0.07, 1.98 exp(-11 C/s) for C/s < 0.07, else 1.18."""
@@ -238,7 +234,10 @@ class Manoeuvring:
     :func:`clarke_derivatives`) or ``"slender_body"`` (the hull's own lateral profile,
     :func:`slender_body_derivatives`); ``derivatives`` overrides their prime-system values by name;
     ``form_factor`` k of the
-    resistance [-] (0: the friction line alone); ``side_force_height`` [m above the keel] where the
+    friction-line resistance [-] (0: the friction line alone); ``resistance`` the config's
+    ``manoeuvring.resistance`` (its ``method`` and items,
+    :func:`stabflow.dynamics.resistance.kernel_resistance`; empty: the friction line);
+    ``side_force_height`` [m above the keel] where the
     hull side force acts (None: half the draft, the centre of a rectangular lateral area);
     ``added_mass`` (3, 3) of (surge, sway, yaw) about G in body axes [kg, kg m, kg m^2], or None for
     Clarke's regression (which has no surge term: A11 = 0), whichever ``hull`` derivatives.
@@ -249,6 +248,7 @@ class Manoeuvring:
     derivatives: dict = field(default_factory=dict)
     hull: str = "clarke"
     form_factor: float = 0.0
+    resistance: dict = field(default_factory=dict)
     side_force_height: float | None = None
     added_mass: np.ndarray | None = None
     #: with a radiation memory: strip theory's forward-speed terms of the heave-pitch radiation
@@ -284,6 +284,8 @@ class SixDof:
     #: the sections' pressure decay (:class:`stabflow.dynamics.model.SectionDecay`) for the
     #: d2phi/dzdt term, None without it (paper 000's kernel)
     decay: object = None
+    #: how the calm-water resistance was made (:func:`stabflow.dynamics.resistance.kernel_resistance`)
+    resistance: dict = field(default_factory=dict)
 
     def continuous_index(self) -> np.ndarray:
         """Indices of those states in the state vector (the roll amplitude, rudder and helm left out)."""
@@ -346,10 +348,13 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     zh = 0.5 * T if man.side_force_height is None else float(man.side_force_height)
     m[K6.M_ZH] = zh - kg
     s_w, _ = friction_radius_area(L, B, T, hp.cb, hp.og)  # ITTC eq 40
-    m[K6.M_RES] = q * s_w * (1.0 + man.form_factor)
+    m[K6.M_RES], m[K6.M_RR_DU], table, res_attrs = kernel_resistance(man.resistance, sec, st, rho, s_w,
+                                                                     man.form_factor, L)
+    m[K6.M_RR:K6.M_RR + K6.N_RR] = table
+    # the friction line alone (Kato's surface, the form factor), for comparison in the report
+    res_attrs["resistance_friction_line_factor"] = q * s_w * (1.0 + man.form_factor)
     m[K6.M_LNU] = L / NU
-    re = max(speed * L / NU, 1e3)
-    m[K6.M_THRUST] = m[K6.M_RES] * float(ittc57_friction(re)) * speed**2
+    m[K6.M_THRUST] = K6._resistance(m, float(speed))
     ap = man.autopilot
     m[K6.M_GA] = ap.ga
     m[K6.M_GB] = ap.gb
@@ -398,7 +403,7 @@ def build_six_dof(sec: Sections, st: xr.Dataset, co: Coefficients, rho: float, h
     s0[:K.N_STATE] = rest
     s0[K6.S_HELM] = 1.0
     return SixDof(sec, tables, p, m, foils, strips, s0, float(speed), float(heading_deg), float(L), der, memory,
-                  decay)
+                  decay, res_attrs)
 
 
 def hull_derivative_sets(sp: xr.Dataset) -> dict[str, dict | str]:

@@ -52,15 +52,16 @@ from scipy import integrate, interpolate, optimize
 from stabflow.constants import G
 from stabflow.dynamics import _kernels as K
 from stabflow.dynamics import _kernels_6dof as K6
-from stabflow.dynamics.manoeuvring import SixDof, ittc57_friction, simulate_six_dof
+from stabflow.dynamics.manoeuvring import SixDof, simulate_six_dof
 from stabflow.dynamics.tables import kernel_args
 from stabflow.waves.synthesis import station_wave_table
 
 
 def resistance(model: SixDof, u):
-    """Calm-water resistance R(u) [N] of the 6-DOF model (ITTC-57 line with the form factor)."""
+    """Calm-water resistance R(u) [N] of the 6-DOF model: the kernel's own (``_kernels_6dof._resistance``,
+    the method of the ship's ``manoeuvring.resistance``)."""
     u = np.asarray(u, float)
-    return model.m[K6.M_RES] * ittc57_friction(np.maximum(np.abs(u) * model.m[K6.M_LNU], 1e3)) * u * np.abs(u)
+    return np.reshape([K6._resistance(model.m, float(x)) for x in u.ravel()], u.shape)
 
 
 def surge_force(model: SixDof, wavelength: float, height: float, n: int = 72) -> tuple[float, float]:

@@ -110,6 +110,37 @@ def manoeuvres_figure(tracks: dict, zigzags: dict, path) -> None:
     plt.close(fig)
 
 
+def resistance_figure(ds: xr.Dataset, path) -> None:
+    """Calm-water resistance of the 6-DOF model against the surge velocity, the friction line alone
+    beside it, and each regular wave's Froude-Krylov surge-force amplitude at its celerity."""
+    fig, ax = plt.subplots(figsize=(8, 4.8), layout="constrained")
+    u = ds["resistance_speed"].values
+    L, U = float(ds.attrs["manoeuvre_length"]), float(ds.attrs["manoeuvre_speed"])
+    ax.plot(u, ds["resistance"].values / 1e3, label=f"model: {ds.attrs['resistance_method']}")
+    ax.plot(u, ds["resistance_friction_only"].values / 1e3, ls="--", label="ITTC-57 friction line alone")
+    for lam, c, f in zip(ds["resistance_wave"].values, ds["resistance_wave_celerity"].values,
+                         ds["resistance_wave_surge_amplitude"].values):
+        ax.plot([c], [f / 1e3], "o")
+        ax.annotate(f"λ {lam:g} m", (c, f / 1e3), textcoords="offset points", xytext=(5, 3), fontsize=8)
+    ax.axvline(U, color="k", lw=0.8, ls=":")
+    ax.annotate("commanded speed", (U, 0), textcoords="offset points", xytext=(3, 5), fontsize=8, rotation=90)
+    fn_max = ds.attrs.get("resistance_froude_range_max")
+    if fn_max is not None:
+        ax.axvspan(fn_max * np.sqrt(9.80665 * L), u[-1], color="0.9", zorder=0,
+                   label=f"Fn > {fn_max:g} (beyond the range tabulated for trawlers)")
+    ax.set_xlim(0, u[-1])
+    ax.set_ylim(bottom=0)
+    ax.set_xlabel("surge velocity [m/s]")
+    ax.set_ylabel("resistance; surge-force amplitude (points) [kN]")
+    top = ax.secondary_xaxis("top", functions=(lambda x: x / np.sqrt(9.80665 * L), lambda f: f * np.sqrt(9.80665 * L)))
+    top.set_xlabel("Froude number")
+    ax.legend(fontsize=8, title=f"points: FK surge-force amplitude at the celerity, H {ds.attrs['resistance_wave_height']:g} m",
+              title_fontsize=8)
+    ax.grid(alpha=0.3)
+    atomic_savefig(fig, path)
+    plt.close(fig)
+
+
 def map_figure(ds: xr.Dataset, path) -> None:
     """Capsize and broach probability per record over wave heading x speed, each cell annotated with
     its count and 95 % interval."""

@@ -520,10 +520,13 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
              "wave": float(d.surf_riding_melnikov_wave_force[i])}
             for i in range(d.sizes.get("surf_case", 0))]
     figs = _optional_figures(results, figdir, f"broaching/{ship}_{{}}.png",
-                             tuple(f"motions_{lo}" for lo in d.loading.values) + ("strip", "manoeuvres", "map"))
+                             tuple(f"motions_{lo}" for lo in d.loading.values) + ("strip", "manoeuvres", "map",
+                                                                                  "resistance"))
     figures = {"motions": [{"loading": str(lo), "file": figs[f"motions_{lo}"]} for lo in d.loading.values],
-               "strip": figs["strip"], "manoeuvres": figs["manoeuvres"], "map": figs["map"]}
+               "strip": figs["strip"], "manoeuvres": figs["manoeuvres"], "map": figs["map"],
+               "resistance": figs["resistance"]}
     pmap = None
+    res = _resistance_summary(d)
     if "map_heading" in d.dims:
         mrows = [{"heading": float(h), "speed": float(v),
                   **{f"{t}{x}": (int if t == "k" else float)(d[f"map_{name}_{q}"].sel(map_heading=h, map_speed=v))
@@ -567,8 +570,34 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                         "added_mass": {"capytaine": "Capytaine's zero-frequency limit of the hull mesh",
                                        "clarke": "Clarke et al. (1983)"}.get(str(mcfg.get("added_mass", "capytaine")),
                                                                              "given in the ship file")},
-                   surf=surf, figures=figures, pmap=pmap, strip_case=d.attrs.get("strip_case", ""),
+                   surf=surf, figures=figures, pmap=pmap, res=res, strip_case=d.attrs.get("strip_case", ""),
                    strip_loading=d.attrs.get("strip_loading", ""), radiation=_radiation_summary(results, figdir, ship, d))
+
+
+def _resistance_summary(d: xr.Dataset) -> dict | None:
+    """The broaching chapter's account of the calm-water resistance (``broaching.resistance_curve``):
+    the method and its particulars, R and the friction line alone at the commanded speed, and each
+    regular wave's surge-force amplitude against R at its celerity."""
+    if "resistance" not in d:
+        return None
+    u = d["resistance_speed"].values
+    U = float(d.attrs["manoeuvre_speed"])
+
+    def at(name, x):
+        return float(np.interp(x, u, d[name].values)) / 1e3
+
+    waves = [{"lam": float(lam), "c": float(c), "f": float(f) / 1e3, "r": at("resistance", float(c)),
+              "line": at("resistance_friction_only", float(c))}
+             for lam, c, f in zip(d["resistance_wave"].values, d["resistance_wave_celerity"].values,
+                                  d["resistance_wave_surge_amplitude"].values)]
+    a = d.attrs
+    return {"method": a["resistance_method"], "holtrop": str(a["resistance_method"]).startswith("holtrop"),
+            "curve": str(a["resistance_method"]) == "curve", "source": a.get("resistance_source", ""),
+            "k1": float(a.get("resistance_form_factor", np.nan)), "area": float(a.get("resistance_wetted_area", np.nan)),
+            "transom": float(a.get("resistance_transom_area", np.nan)), "outside": a.get("resistance_outside_range", ""),
+            "fn_max": float(a.get("resistance_froude_range_max", np.nan)), "speed": U,
+            "fn": U / np.sqrt(9.80665 * float(a["manoeuvre_length"])), "r_u": at("resistance", U),
+            "line_u": at("resistance_friction_only", U), "height": float(a["resistance_wave_height"]), "waves": waves}
 
 
 def _radiation_summary(results: Path, figdir: Path, ship: str, d: xr.Dataset) -> dict:
