@@ -420,8 +420,9 @@ def surf_riding_thresholds(ship, cfg: dict, L: float, radiation: xr.Dataset | No
     """Surf-riding level-2 physics: the critical Froude number of Melnikov's method on the surge
     equation (:func:`stabflow.dynamics.surf_riding.melnikov_threshold`, the ship's own resistance
     and Froude-Krylov surge force) in regular following waves over lambda/L x H/lambda. The
-    resistance is the 6-DOF model's calm-water resistance (the ship's manoeuvring section, or its
-    defaults: ITTC-57 friction with the form factor); ``L`` [m] the waterline length.
+    resistance is the 6-DOF model's calm-water resistance (the ship's ``manoeuvring.resistance``,
+    :mod:`stabflow.dynamics.resistance`; by default the ITTC-57 friction line with the form factor,
+    no wave-making part), named in ``sr_resistance``; ``L`` [m] the waterline length.
 
     For a ship with the heave-pitch memory model (``manoeuvring.heave_pitch_radiation: memory``)
     and its ``radiation`` step's dataset, the same grid with the mean wave-induced surge force of
@@ -478,7 +479,8 @@ def surf_riding_thresholds(ship, cfg: dict, L: float, radiation: xr.Dataset | No
                 # no threshold below the celerity (the root sits on the bracket's end): NaN, reported as such
                 fn[i, j] = u / math.sqrt(G * L) if u < 0.999 * celerity else np.nan
         out[name] = (("sr_wavelength_ratio", "sr_steepness"), fn)
-    attrs = {"sr_method": "Melnikov's method on the surge equation (stabflow.dynamics.surf_riding)"}
+    attrs = {"sr_method": "Melnikov's method on the surge equation (stabflow.dynamics.surf_riding)",
+             "sr_resistance": str(model.resistance.get("resistance_method", ""))}
     if why is not None:
         attrs["sr_wave_force_not_computed"] = why
     else:

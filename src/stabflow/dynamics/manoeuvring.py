@@ -4,9 +4,10 @@ The 3-DOF hybrid model (:mod:`stabflow.dynamics.model`) with surge, sway and yaw
 (:data:`stabflow.dynamics.rigid_body.SIX_DOF`), the incident wave evaluated at the stations'
 instantaneous positions, and the forces a free course needs:
 
-* calm-water resistance on the ITTC-57 friction line with a form factor, R = 1/2 rho S_w (1 + k)
-  C_F u|u|, C_F = 0.075 / (log10 Re - 2)^2 (ITTC 1957 model-ship correlation line), with Kato's
-  wetted surface S_w = L (1.7 d + C_B B) (ITTC roll-damping procedure eq 40), and a constant thrust
+* calm-water resistance R(u) (:mod:`stabflow.dynamics.resistance`, the ship's
+  ``manoeuvring.resistance``): the ITTC-57 friction line with a form factor on Kato's wetted
+  surface (ITTC roll-damping procedure eq 40), Holtrop & Mennen (1982) with Holtrop (1984), wave
+  resistance included, from the hull's own particulars, or a given curve; and a constant thrust
   equal to the resistance at the commanded speed, so that the commanded speed holds in calm water;
 * linear hull manoeuvring forces Y = u (Y_v v + Y_r r), N = u (N_v v + N_r r) about midships, from
   Clarke, Gedling & Hine (1983) (:func:`clarke_derivatives`) or slender-body theory on the hull's

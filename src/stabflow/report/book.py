@@ -329,6 +329,7 @@ def criteria_page(name: str, results: Path, figdir: Path) -> str | None:
               for j in range(d.sizes["sr_steepness"])}}
           for r in d.sr_wavelength_ratio.values] if "sr_froude_critical" in d else []
     sr_wf = {"on": wf, "why": d.attrs.get("sr_wave_force_not_computed", ""),
+             "resistance": d.attrs.get("sr_resistance", ""),
              "beyond": int(d.attrs.get("sr_wave_force_exceeds_resistance", 0))}
     sr_steep = [float(x) for x in d.sr_steepness.values] if "sr_froude_critical" in d else []
     pr = [{"heading": float(h), "fn": float(f), "s": float(x), "ratio": float(d.pr_encounter_ratio.sel(pr_heading=h, pr_froude=f, pr_steepness=x)),
