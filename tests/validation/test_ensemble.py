@@ -189,6 +189,17 @@ def test_trajectory_error_grows_with_the_step_and_fails_when_too_long(model):
     assert good < 0.5 * TOL_TRAJECTORY < 2.0 * TOL_TRAJECTORY < bad, (good, bad)
 
 
+def test_trajectory_error_compares_the_first_seconds_from_rest_whatever_the_warm_up(model):
+    """The trajectory row's "first 30 s" are the first seconds from rest: a condition's warm-up
+    (warmup_s) does not lengthen the compared records (it did: 100 s of warm-up made them 130 s)."""
+    import dataclasses
+
+    from stabflow.validation.ensemble import trajectory_error
+
+    warm = dataclasses.replace(model, cond=dict(model.cond, warmup_s=60.0))
+    assert trajectory_error(warm, [0, 1], 0.5, 0.1, seconds=20.0) == trajectory_error(model, [0, 1], 0.5, 0.1, seconds=20.0)
+
+
 def test_regeneration_detects_a_model_that_is_not_the_ensembles(model, ens):
     """A dataset whose moment sums differ from the model's records fails the regeneration row, and
     an ensemble without records gives FAIL rows with the reason, never NaN quietly."""

@@ -357,7 +357,8 @@ def trajectory_error(model, records, dt: float, fine: float, seconds: float = TR
     from stabflow.statistics.ensemble import simulate_record
 
     k = int(round(dt / fine))
-    short = dict(model.cond, duration=seconds, samples=0)
+    # the first seconds from rest: no warm-up (with one, the records would run warmup_s + seconds)
+    short = dict(model.cond, duration=seconds, samples=0, warmup_s=0.0)
     coarse = dataclasses.replace(model, cond=dict(short, dt=dt))
     refined = dataclasses.replace(model, cond=dict(short, dt=fine))
     dofs = (S_ROLL, S_YAW) if model.six is not None else (S_ROLL,)
