@@ -110,3 +110,32 @@ def test_paper_004_comparison_matches_cases_by_their_wave():
     # a wave the paper did not run is not compared
     d2 = d.assign(wave_height=("case", [2.0] * 4 + [3.1, 4.0, 4.6]))
     assert paper_004_comparison(d2)[1]["compared"] == 2
+
+
+def test_scenario_ensembles_find_the_paper_case_and_give_the_rate_interval(tmp_path):
+    """A 6-DOF ensemble of the broaching ship is reported with its capsize rate and Garwood
+    interval, and matched to paper 004's irregular case of the same loading's KG and Hs."""
+    import numpy as np
+    import xarray as xr
+    from scipy import stats
+
+    from stabflow.report.book import _scenario_ensembles
+
+    cases = ["IR-1", "IR-2"]
+    d = xr.Dataset({"wavelength": ("case", [np.nan, np.nan]), "wave_height": ("case", [3.1, 4.0]),
+                    "kg": ("loading", [3.8873, 3.468])}, coords={"loading": ["heavy", "tank_test"], "case": cases})
+    folder = tmp_path / "ensemble" / "trawler_sq6"
+    folder.mkdir(parents=True)
+    xr.Dataset({"capsize_count": 18, "exposure_hours": 90.0, "warmup_lost_count": 3, "broach_count": 500},
+               attrs={"n_records": 600}).to_netcdf(folder / "ensemble.nc")
+    config = {"broaching": {"heading_deg": 45.0, "speed_kn": 10.0},
+              "ensembles": [{"name": "sq6", "ship": "trawler", "dof": 6, "kg": 3.8873, "heading_deg": 45.0,
+                             "speed_kn": 10.0, "duration": 600.0, "warmup_s": 100.0,
+                             "sea": {"spectrum": "pierson_moskowitz", "hs": 4.0}},
+                            {"name": "sq", "ship": "trawler", "sea": {"hs": 4.0}}]}
+    (e,) = _scenario_ensembles(tmp_path, config, "trawler", d)
+    assert e["case"] == "IR-2, heavy loading" and e["k"] == 18 and e["lost"] == 3 and e["records"] == 600
+    assert e["rate"] == 18 / 90.0
+    assert e["lo"] == stats.chi2.ppf(0.025, 36) / 2 / 90.0 and e["hi"] == stats.chi2.ppf(0.975, 38) / 2 / 90.0
+    config["ensembles"][0]["kg"] = 3.5
+    assert _scenario_ensembles(tmp_path, config, "trawler", d)[0]["case"] is None

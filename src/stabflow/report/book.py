@@ -528,6 +528,7 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                "resistance": figs["resistance"]}
     pmap = None
     res = _resistance_summary(d)
+    ens6 = _scenario_ensembles(results, config, ship, d)
     if "map_heading" in d.dims:
         mrows = [{"heading": float(h), "speed": float(v),
                   **{f"{t}{x}": (int if t == "k" else float)(d[f"map_{name}_{q}"].sel(map_heading=h, map_speed=v))
@@ -571,8 +572,43 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
                         "added_mass": {"capytaine": "Capytaine's zero-frequency limit of the hull mesh",
                                        "clarke": "Clarke et al. (1983)"}.get(str(mcfg.get("added_mass", "capytaine")),
                                                                              "given in the ship file")},
-                   surf=surf, figures=figures, pmap=pmap, res=res, strip_case=d.attrs.get("strip_case", ""),
+                   surf=surf, figures=figures, pmap=pmap, res=res, ens6=ens6, strip_case=d.attrs.get("strip_case", ""),
                    strip_loading=d.attrs.get("strip_loading", ""), radiation=_radiation_summary(results, figdir, ship, d))
+
+
+def _scenario_ensembles(results: Path, config: dict, ship: str, d: xr.Dataset) -> list[dict]:
+    """The config's 6-DOF ensembles of the broaching ship, each
+    with its capsize count, exposure and rate (Garwood 95 % interval), and the paper 004 case it
+    repeats as a statistic (the same loading's KG and the irregular case's Hs), if any."""
+    from stabflow.statistics.splittime import poisson_interval
+
+    b = config["broaching"]
+    out = []
+    for c in config.get("ensembles", []):
+        if c.get("ship") != ship or int(c.get("dof", 3)) != 6:
+            continue
+        f = results / "ensemble" / f"{ship}_{c['name']}" / "ensemble.nc"
+        if not f.exists():
+            continue
+        with xr.open_dataset(f) as e:
+            k, hours = int(e["capsize_count"]), float(e["exposure_hours"])
+            n = int(e.attrs["n_records"])
+            lost = int(e["warmup_lost_count"]) if "warmup_lost_count" in e else 0
+            broach = int(e["broach_count"]) if "broach_count" in e else None
+        rate, lo, hi = poisson_interval(k, hours)
+        case = None
+        for lname in d.loading.values:
+            for cname in d.case.values:
+                r = d.sel(loading=lname, case=cname)
+                if (not np.isfinite(float(r.wavelength)) and c.get("kg") is not None
+                        and abs(float(r.kg) - float(c["kg"])) < 1e-3 and float(r.wave_height) == float(c["sea"]["hs"])
+                        and float(c["heading_deg"]) == float(b["heading_deg"]) and float(c["speed_kn"]) == float(b["speed_kn"])):
+                    case = f"{cname}, {lname} loading"
+        out.append({"name": c["name"], "hs": float(c["sea"]["hs"]), "spectrum": c["sea"]["spectrum"],
+                    "heading": float(c["heading_deg"]), "speed": float(c["speed_kn"]), "kg": c.get("kg"),
+                    "records": n, "lost": lost, "duration": float(c["duration"]), "warmup": float(c.get("warmup_s", 0.0)),
+                    "k": k, "hours": hours, "rate": rate, "lo": lo, "hi": hi, "broach": broach, "case": case})
+    return out
 
 
 def _resistance_summary(d: xr.Dataset) -> dict | None:
