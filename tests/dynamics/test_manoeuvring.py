@@ -658,6 +658,20 @@ def test_modes_switch_with_hysteresis():
     assert fy == pytest.approx(0.5 * 1025.0 * 25.0 * 2.4 * 3.0 * np.radians(30.0), rel=1e-12)
 
 
+def test_holtrop_resistance_and_thrust_hold_the_commanded_speed(trawler):
+    """With Holtrop's resistance (friction line plus the wave-making table) the thrust is the
+    kernel's R(U) and the ship runs straight at the commanded speed in calm water; a commanded
+    speed 10 % higher needs more thrust than the friction line's growth alone (the wave part)."""
+    model = six_dof(trawler, autopilot=Autopilot(mode="fixed"), resistance={"method": "holtrop_mennen"})
+    assert model.m[K6.M_THRUST] == K6._resistance(model.m, SPEED)
+    assert model.resistance["resistance_method"].startswith("holtrop_mennen")
+    ds = simulate_six_dof(model, ([], [], []), 60.0, 0.05)
+    assert ds.attrs["status"] == K6.OK
+    assert float(np.max(np.abs(ds["u"] - SPEED))) < 1e-9
+    r1, r0 = K6._resistance(model.m, 1.1 * SPEED), K6._resistance(model.m, SPEED)
+    assert r1 / r0 > 1.1**2 * 1.2  # the wave resistance rises far faster than u^2 at Fn 0.35
+
+
 def test_resistance_and_thrust_hold_the_commanded_speed(trawler):
     """ITTC-57 line at Re 1e7 is 0.075 / 25; in calm water with the rudder amidships the ship runs
     straight at the commanded speed (the thrust equals the resistance there)."""

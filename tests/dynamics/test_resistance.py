@@ -95,7 +95,9 @@ def test_wave_resistance_vanishes_at_rest_and_rises():
 
 def test_box_barge_particulars_are_exact(barge):
     """A box of L 100, B 20 at draft 6 m: girth-integrated wetted surface L (B + 2T) = 3200 m^2
-    (no end faces), C_M = C_WP = 1, lcb at 0.5 L, the immersed transom B T = 120 m^2."""
+    (no end faces), C_M = C_WP = 1, lcb at 0.5 L, the immersed transom B T = 120 m^2; its blunt
+    bow's whole section counts as A_BT (the section at the waterline's forward end: Holtrop's
+    method is not meant for a box), its centroid T / 2 below the waterline."""
     ship, sec, st, _ = barge
     f = hull_form(sec, st)
     assert wetted_area(sec, st) == pytest.approx(100.0 * (20.0 + 12.0), rel=1e-9)
@@ -103,7 +105,40 @@ def test_box_barge_particulars_are_exact(barge):
     assert (f.cm, f.cwp, f.cp, f.cb) == pytest.approx((1.0, 1.0, 1.0, 1.0), rel=1e-9)
     assert f.lcb == pytest.approx(0.0, abs=1e-9)
     assert f.transom_area == pytest.approx(120.0, rel=1e-9)
-    assert hull_form(sec, st, {"transom_area": 0.0}).transom_area == 0.0
+    assert f.bulb_area == pytest.approx(120.0, rel=1e-9) and f.draft - f.bulb_height == pytest.approx(3.0, rel=1e-9)
+    g = hull_form(sec, st, {"transom_area": 0.0, "bulb_area": 0.0})
+    assert g.transom_area == 0.0 and g.bulb_area == 0.0
+
+
+def test_trawler_particulars_refer_to_the_waterline(trawler_sections):
+    """The trawler: lcb from the waterline's midpoint (not the immersed extent, which its bulb
+    stretches 0.85 m forward), a bulb and a transom at the waterline's ends, and particulars that
+    move little with the station count (81 against 161 stations: S, A_T; lcb -1.11 and -0.77 % L,
+    A_BT 1.61 and 1.80 m^2, both read at the waterline's ends, which the slabs quantise)."""
+    sec, st = trawler_sections
+    f = hull_form(sec, st)
+    assert f.length == pytest.approx(float(st["lwl"]))
+    assert -2.0 < f.lcb < 0.0 and f.bulb_area > 1.0 and 2.5 < f.transom_area < 3.5
+    ship, _, _, _ = ship_model("trawler")
+    from stabflow.geometry import Sections, build_hull
+    from stabflow.hydrostatics.statics import compute_statics
+
+    fine = ship.modified(stations=161)
+    hull = build_hull(fine)
+    g = hull_form(Sections(hull), compute_statics(fine, hull))
+    assert g.wetted_area == pytest.approx(f.wetted_area, rel=0.01)
+    # the waterline's ends fall on slab faces (0.28 m at 81 stations): lcb to half a slab, 0.65 % L
+    assert g.lcb == pytest.approx(f.lcb, abs=0.65)
+    assert g.transom_area == pytest.approx(f.transom_area, rel=0.03)
+    # A_BT is read at the waterline's forward end, which moves with the slabs: 1.61 and 1.80 m^2
+    assert g.bulb_area == pytest.approx(f.bulb_area, rel=0.15)
+
+
+def test_a_resistance_that_falls_with_speed_is_refused(trawler_sections):
+    sec, st = trawler_sections
+    with pytest.raises(StabflowError, match="falls between"):
+        kernel_resistance({"method": "curve", "speeds": [0.0, 3.0, 6.0], "values": [0.0, 9e3, 5e3]}, sec, st, 1025.0,
+                          1.0, 0.0, float(st["lwl"]))
 
 
 def test_outside_range_names_each_item():

@@ -319,19 +319,26 @@ def reference_rows() -> list:
 
 
 # ------------------------------------------------------------------------------ from the hull
-def wetted_area(sec, st: xr.Dataset) -> float:
-    """Wetted surface [m^2] of the hull at its calm-water equilibrium: the immersed girth of each
-    station (both sides) times its slab length (the girth's longitudinal slope left out)."""
+def _waterline(sec, st: xr.Dataset) -> np.ndarray:
+    """Body height of the calm waterline at each station, at the free-trim equilibrium."""
     from stabflow.hydrostatics.statics import equilibrium
 
     h0, th0 = equilibrium(sec, float(st["volume"]), float(st["lcg"]), float(st["kg"]))[:2]
-    zw = (-h0 + sec.x * math.sin(th0)) / math.cos(th0)
+    return (-h0 + sec.x * math.sin(th0)) / math.cos(th0)
+
+
+def wetted_area(sec, st: xr.Dataset) -> float:
+    """Wetted surface [m^2] of the hull at its calm-water equilibrium: the immersed girth of each
+    station (both sides, the half contour's closing segments on the centreline left out) times its
+    slab length (the girth's longitudinal slope left out)."""
+    zw = _waterline(sec, st)
     total = 0.0
     for i in range(len(sec.x)):
         n = int(sec.n[i])
         y, z = sec.y[i, :n], sec.z[i, :n]
         za, zb = z[:-1], z[1:]
         seg = np.hypot(np.diff(y), zb - za)
+        seg[(y[:-1] == 0.0) & (y[1:] == 0.0)] = 0.0  # a closing line on the centreline is not hull
         lo, hi = np.minimum(za, zb), np.maximum(za, zb)
         # the part of each segment below the waterline (straight segments: by its height fraction)
         frac = np.where(hi > lo, np.clip((zw[i] - lo) / np.where(hi > lo, hi - lo, 1.0), 0.0, 1.0),
@@ -340,36 +347,77 @@ def wetted_area(sec, st: xr.Dataset) -> float:
     return total
 
 
+def _section_at(x: float, xs: np.ndarray, values: np.ndarray) -> float:
+    """``values`` at the stations ``xs`` taken at ``x``: linear between stations, extrapolated
+    linearly from the two nearest beyond them, never below 0."""
+    if x <= xs[0]:
+        v = values[0] + (x - xs[0]) * (values[1] - values[0]) / (xs[1] - xs[0])
+    elif x >= xs[-1]:
+        v = values[-1] + (x - xs[-1]) * (values[-1] - values[-2]) / (xs[-1] - xs[-2])
+    else:
+        v = np.interp(x, xs, values)
+    return max(float(v), 0.0)
+
+
 def hull_form(sec, st: xr.Dataset, cfg: dict | None = None) -> HullForm:
     """Holtrop's particulars of the hull at its calm-water equilibrium from the stations and the
-    statics; ``cfg`` the config's ``manoeuvring.resistance`` (stern shape, bulb, appendages and an
-    optional ``transom_area``; without it, the immersed area of the aftmost station when the
-    waterline reaches it: the slab model's aft face)."""
+    statics; ``cfg`` the config's ``manoeuvring.resistance`` (stern shape and appendages, and
+    ``transom_area``, ``bulb_area`` and ``bulb_height`` if given).
+
+    L, its ends and lcb (% of L from its midpoint) refer to the waterline: the stations whose
+    waterline breadth is not zero (the statics' ``lwl``). Unless given, the immersed transom A_T
+    and the bulb's transverse area A_BT (and its centroid's height above the keel h_B) are the
+    immersed section areas at the waterline's aft and forward ends, interpolated between the
+    stations (extrapolated beyond the last), as Holtrop defines them (A_BT where the still-water
+    surface meets the stem): near zero for a hull that leaves the water at both ends. T_F is T
+    (no separate forward draft), and h_B keeps the bulb centroid's depth below the waterline."""
     from stabflow.dynamics.roll_damping import section_parameters
+    from stabflow.geometry._kernels import _clip_half
 
     cfg = cfg or {}
     sp = section_parameters(sec, st)
-    wet = sp["draft"].values > 0
-    xs, dx = sp["x"].values, sp["dx"].values
-    aft, fwd = float((xs - 0.5 * dx)[wet].min()), float((xs + 0.5 * dx)[wet].max())
-    L = float(st["lwl"])
-    B = float(st["bwl"])
-    T = float(st["draft_mid"])
+    xs, dx = sec.x, sec.dx
+    zw = _waterline(sec, st)
+    wl = np.array([sec.half_breadth(i, zw[i]) for i in range(len(xs))]) > 0
+    aft, fwd = float((xs - 0.5 * dx)[wl].min()), float((xs + 0.5 * dx)[wl].max())
+    L, B, T = float(st["lwl"]), float(st["bwl"]), float(st["draft_mid"])
     lcb = 100.0 * (float(st["lcb"]) - 0.5 * (aft + fwd)) / L
+    area = sp["area"].values
     transom = cfg.get("transom_area")
     if transom is None:
-        transom = float(sp["area"].values[0]) if wet[0] else 0.0
+        transom = _section_at(aft, xs, area)
+    bulb, hb = cfg.get("bulb_area"), cfg.get("bulb_height")
+    if bulb is None:
+        bulb = _section_at(fwd, xs, area)
+        # the bulb's centroid above the keel at the station nearest the waterline's forward end
+        i = int(np.argmin(np.abs(xs - fwd)))
+        n = int(sec.n[i])
+        y, z = np.ascontiguousarray(sec.y[i, :n]), np.ascontiguousarray(sec.z[i, :n])
+        a, _, mz = _clip_half(y, z, n, 0.0, 1.0, zw[i])
+        # Holtrop reads the bulb through T_F - h_B, its centroid's depth below the waterline; with
+        # T_F the mean draft T (this model has no separate forward draft), h_B = T - that depth
+        hb = T - (zw[i] - mz / a) if (bulb > 0 and a > 0) else 0.0
     stern = cfg.get("stern", "normal")
     if stern not in STERN_SHAPE:
         raise StabflowError(f"manoeuvring.resistance.stern {stern!r} is not one of {sorted(STERN_SHAPE)}")
     return HullForm(length=L, breadth=B, draft=T, volume=float(st["volume"]), lcb=lcb, cm=float(sp["cm"]),
                     cwp=float(st["waterplane_area"]) / (L * B), wetted_area=wetted_area(sec, st),
-                    draft_fwd=T, transom_area=float(transom), bulb_area=float(cfg.get("bulb_area", 0.0)),
-                    bulb_height=float(cfg.get("bulb_height", 0.0)), stern=STERN_SHAPE[stern],
+                    draft_fwd=T, transom_area=float(transom), bulb_area=float(bulb), bulb_height=float(hb or 0.0),
+                    stern=STERN_SHAPE[stern],
                     appendages=tuple((float(a["area"]), float(a["k2"])) for a in cfg.get("appendages", [])))
 
 
 # ------------------------------------------------------------------------------ the kernel's table
+def _check_rising(r: np.ndarray, u: np.ndarray, what: str) -> None:
+    """The resistance must rise with speed: the thrust that holds the commanded speed and
+    Melnikov's threshold (a root of mean thrust minus resistance) assume it."""
+    bad = np.flatnonzero(np.diff(r) < 0.0)
+    if bad.size:
+        i = int(bad[0])
+        raise StabflowError(f"manoeuvring.resistance: {what} falls between {u[i]:.2f} and {u[i + 1]:.2f} m/s "
+                            f"({r[i]:.0f} -> {r[i + 1]:.0f} N); the surge model needs a resistance that rises with speed")
+
+
 def kernel_resistance(cfg: dict | None, sec, st: xr.Dataset, rho: float, kato_area: float, form_factor_k: float,
                       length: float, nu: float = NU) -> tuple[float, float, np.ndarray, dict]:
     """The kernel's resistance (``_kernels_6dof._resistance``) for the config's
@@ -401,12 +449,14 @@ def kernel_resistance(cfg: dict | None, sec, st: xr.Dataset, rho: float, kato_ar
             raise StabflowError("manoeuvring.resistance: the curve needs as many values as speeds, the speeds rising "
                                 "from 0 m/s with the value 0 N there")
         r = np.where(u <= sp[-1], PchipInterpolator(sp, val)(np.minimum(u, sp[-1])), val[-1] * (u / sp[-1]) ** 2)
+        _check_rising(r, u, "the curve")
         return 0.0, float(u[1]), r, {"resistance_method": "curve", "resistance_source": str(cfg.get("source", ""))}
     form = hull_form(sec, st, cfg)
     hm = holtrop_mennen(form, u, rho, nu)
     rest = (hm["r_wave"] + hm["r_bulb"] + hm["r_transom"] + hm["r_correlation"]).values
     k1 = float(hm.attrs["hm_form_factor"])
     friction = q * (form.wetted_area * k1 + sum(a * k for a, k in form.appendages))
+    _check_rising(hm["r_total"].values, u, "Holtrop's R(u) for this hull")
     return friction, float(u[1]), rest, {
         "resistance_method": "holtrop_mennen (Holtrop & Mennen 1982 with Holtrop 1984)",
         "resistance_form_factor": k1, "resistance_wetted_area": form.wetted_area,
