@@ -120,6 +120,9 @@ def test_trawler_particulars_refer_to_the_waterline(trawler_sections):
     assert f.length == pytest.approx(float(st["lwl"]))
     assert -2.0 < f.lcb < 0.0 and f.bulb_area > 1.0 and 2.5 < f.transom_area < 3.5
     ship, _, _, _ = ship_model("trawler")
+    # the ship file's resistance section (its schema defaults filled in) leaves A_T and A_BT to the hull
+    f_cfg = hull_form(sec, st, ship.data["manoeuvring"]["resistance"])
+    assert (f_cfg.bulb_area, f_cfg.transom_area, f_cfg.bulb_height) == (f.bulb_area, f.transom_area, f.bulb_height)
     from stabflow.geometry import Sections, build_hull
     from stabflow.hydrostatics.statics import compute_statics
 
