@@ -460,6 +460,6 @@ def kernel_resistance(cfg: dict | None, sec, st: xr.Dataset, rho: float, kato_ar
     return friction, float(u[1]), rest, {
         "resistance_method": "holtrop_mennen (Holtrop & Mennen 1982 with Holtrop 1984)",
         "resistance_form_factor": k1, "resistance_wetted_area": form.wetted_area,
-        "resistance_transom_area": form.transom_area,
+        "resistance_transom_area": form.transom_area, "resistance_bulb_area": form.bulb_area,
         "resistance_outside_range": "; ".join(outside_range(form)) or "none",
         "resistance_froude_range_max": TRAWLER_RANGE["froude"][1]}

@@ -631,7 +631,8 @@ def _resistance_summary(d: xr.Dataset) -> dict | None:
     return {"method": a["resistance_method"], "holtrop": str(a["resistance_method"]).startswith("holtrop"),
             "curve": str(a["resistance_method"]) == "curve", "source": a.get("resistance_source", ""),
             "k1": float(a.get("resistance_form_factor", np.nan)), "area": float(a.get("resistance_wetted_area", np.nan)),
-            "transom": float(a.get("resistance_transom_area", np.nan)), "outside": a.get("resistance_outside_range", ""),
+            "transom": float(a.get("resistance_transom_area", np.nan)), "bulb": float(a.get("resistance_bulb_area", np.nan)),
+            "outside": a.get("resistance_outside_range", ""),
             "fn_max": float(a.get("resistance_froude_range_max", np.nan)), "speed": U,
             "fn": U / np.sqrt(9.80665 * float(a["manoeuvre_length"])), "r_u": at("resistance", U),
             "line_u": at("resistance_friction_only", U), "height": float(a["resistance_wave_height"]), "waves": waves}
