@@ -216,3 +216,34 @@ def test_kernel_curve_method_passes_through_the_given_points(trawler_sections):
         kernel_resistance({"method": "curve", "speeds": [1.0, 2.0], "values": [1.0, 2.0]}, sec, st, 1025.0, 1.0, 0.0, L)
     with pytest.raises(StabflowError, match="method"):
         kernel_resistance({"method": "model_test"}, sec, st, 1025.0, 1.0, 0.0, L)
+
+
+def test_branch_coefficients_are_continuous_at_their_switches():
+    """Holtrop's piecewise coefficients meet at their switches (a slip in a branch's constants
+    would break it): c7 at B/L 0.11 and 0.25, c12 at T/L 0.05 (1982 form factor), c15 at
+    L^3/nabla 512 and 1726.91, c16 at C_P 0.8 (the worked example's ship varied one ratio at a time)."""
+    from dataclasses import replace
+
+    from stabflow.dynamics.resistance import _wave_coefficients
+
+    def coef(key, eps=1e-7, **kw):
+        lo = _wave_coefficients(replace(EXAMPLE, **{k: v * (1 - eps) for k, v in kw.items()}))[key]
+        hi = _wave_coefficients(replace(EXAMPLE, **{k: v * (1 + eps) for k, v in kw.items()}))[key]
+        return lo, hi
+
+    L = EXAMPLE.length
+    for bl in (0.11, 0.25):
+        lo, hi = coef("c7", breadth=bl * L)
+        assert lo == pytest.approx(hi, rel=5e-5), bl  # measured 7e-6 at 0.11 (the 1/3 exponent's 0.33333)
+    # L^3 / nabla = 512 and 1726.91 (L / nabla^(1/3) = 8 and 12.0): c15 -1.69385 and about 0
+    for ratio in (512.0, 1726.91):
+        lo, hi = coef("c15", volume=L**3 / ratio)
+        assert lo == pytest.approx(hi, abs=5e-5), ratio  # measured 1e-7 and 4e-6
+    # C_P 0.8 through C_M (C_P = nabla / (C_M B T L))
+    cm = EXAMPLE.volume / (0.8 * EXAMPLE.breadth * EXAMPLE.draft * L)
+    lo, hi = coef("c16", cm=cm)
+    assert lo == pytest.approx(hi, abs=5e-5)  # measured 3e-6
+    # c12 at T/L 0.05 inside the 1982 form factor
+    a = form_factor(replace(EXAMPLE, draft=0.05 * L * (1 - 1e-7)), "1982")
+    b = form_factor(replace(EXAMPLE, draft=0.05 * L * (1 + 1e-7)), "1982")
+    assert a == pytest.approx(b, rel=1e-5)  # measured 1e-7
