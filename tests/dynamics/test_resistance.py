@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from stabflow import StabflowError
+from stabflow.constants import G
 from stabflow.dynamics import _kernels_6dof as K6
 from stabflow.dynamics.resistance import (PEER_1984, TABLE_FROUDE, TABLE_POINTS, WORKED_EXAMPLE_1982, form_factor,
                                           holtrop_mennen, holtrop_wetted_area, hull_form, ittc57_friction,
@@ -173,8 +174,7 @@ def test_kernel_tabulates_holtrop_exactly_at_its_points_and_closely_between(traw
     sec, st = trawler_sections
     m, attrs, L = _model_m({"method": "holtrop_mennen"}, sec, st)
     f = hull_form(sec, st)
-    assert K6.N_RR == TABLE_POINTS
-    u = np.linspace(0.0, TABLE_FROUDE * math.sqrt(9.80665 * L), TABLE_POINTS)
+    u = np.linspace(0.0, TABLE_FROUDE * math.sqrt(G * L), TABLE_POINTS)
     ref = holtrop_mennen(f, u, 1025.0, 1.18831e-6)["r_total"].values
     got = np.array([K6._resistance(m, x) for x in u])
     np.testing.assert_allclose(got, ref, rtol=1e-9, atol=1e-6)

@@ -71,7 +71,7 @@ M_WL_HEIGHT = 34   # calm-water waterline height above the body origin at G's st
 M_TRIM = 35        # calm-water trim theta_0 [rad]: the manoeuvring loads' attitude is the pitch from it
 M_RR_DU = 36       # spacing of the resistance table [m/s] (0: no table, the friction line alone)
 M_RR = 37          # the resistance beyond the friction line at u = 0, du, 2 du, ... [N] (``_resistance``)
-N_RR = 121         # its points (stabflow.dynamics.resistance.TABLE_POINTS)
+N_RR = 121         # its points (stabflow.dynamics.resistance.TABLE_POINTS reads it)
 N_M = M_RR + N_RR
 # optional tail of ``m`` (longer than N_M): the heave-pitch radiation memory of
 # :mod:`stabflow.dynamics.radiation` (``memory_parameters``): m[M_MEMORY] = number of poles n, then

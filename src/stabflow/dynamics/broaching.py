@@ -410,13 +410,16 @@ def resistance_curve(model: SixDof, wavelengths, height: float, froude_max: floa
     amplitude of regular following waves of ``height`` [m] at ``wavelengths`` [m] with their
     celerities (:func:`stabflow.dynamics.surf_riding.surge_force`): where the amplitude exceeds R
     at the celerity, the wave can carry the ship at its speed."""
+    from dataclasses import replace
+
     from stabflow.dynamics import _kernels_6dof as K6
-    from stabflow.dynamics.resistance import ittc57_friction
     from stabflow.dynamics.surf_riding import resistance, surge_force
 
     u = np.linspace(0.0, froude_max * np.sqrt(G * model.length), n)
-    line = model.resistance["resistance_friction_line_factor"] * np.where(
-        u > 0, ittc57_friction(np.maximum(u * model.m[K6.M_LNU], 1e3)), 0.0) * u**2
+    # the kernel's resistance with its friction line alone (no table)
+    m = model.m.copy()
+    m[K6.M_RES], m[K6.M_RR_DU] = model.resistance["resistance_friction_line_factor"], 0.0
+    line = resistance(replace(model, m=m), u)
     lams = np.asarray(wavelengths, float)
     amp = np.array([surge_force(model, lam, height)[0] for lam in lams])
     ds = xr.Dataset(

@@ -33,6 +33,7 @@ import xarray as xr
 
 from stabflow import StabflowError
 from stabflow.constants import G
+from stabflow.dynamics import _kernels_6dof as K6
 from stabflow.dynamics.roll_damping import NU
 
 #: methods of ``manoeuvring.resistance.method``
@@ -47,8 +48,8 @@ STERN_SHAPE = {"pram_gondola": -25.0, "v_sections": -10.0, "normal": 0.0, "u_sec
 #: which does not state its own source; neither paper's range table could be read here
 TRAWLER_RANGE = {"froude": (0.0, 0.38), "cp": (0.55, 0.65), "l_over_b": (3.9, 6.3), "b_over_t": (2.1, 3.0)}
 
-#: the kernel's resistance table: this many points from 0 to TABLE_FROUDE sqrt(g L)
-TABLE_POINTS = 121
+#: the kernel's resistance table: this many points (its m slots) from 0 to TABLE_FROUDE sqrt(g L)
+TABLE_POINTS = K6.N_RR
 TABLE_FROUDE = 1.5
 
 
@@ -327,11 +328,12 @@ def _waterline(sec, st: xr.Dataset) -> np.ndarray:
     return (-h0 + sec.x * math.sin(th0)) / math.cos(th0)
 
 
-def wetted_area(sec, st: xr.Dataset) -> float:
-    """Wetted surface [m^2] of the hull at its calm-water equilibrium: the immersed girth of each
+def wetted_area(sec, st: xr.Dataset, zw: np.ndarray | None = None) -> float:
+    """Wetted surface [m^2] of the hull at its calm-water equilibrium (``zw``: the waterline's body
+    height at each station, :func:`_waterline`, if already found): the immersed girth of each
     station (both sides, the half contour's closing segments on the centreline left out) times its
     slab length (the girth's longitudinal slope left out)."""
-    zw = _waterline(sec, st)
+    zw = _waterline(sec, st) if zw is None else zw
     total = 0.0
     for i in range(len(sec.x)):
         n = int(sec.n[i])
@@ -350,13 +352,9 @@ def wetted_area(sec, st: xr.Dataset) -> float:
 def _section_at(x: float, xs: np.ndarray, values: np.ndarray) -> float:
     """``values`` at the stations ``xs`` taken at ``x``: linear between stations, extrapolated
     linearly from the two nearest beyond them, never below 0."""
-    if x <= xs[0]:
-        v = values[0] + (x - xs[0]) * (values[1] - values[0]) / (xs[1] - xs[0])
-    elif x >= xs[-1]:
-        v = values[-1] + (x - xs[-1]) * (values[-1] - values[-2]) / (xs[-1] - xs[-2])
-    else:
-        v = np.interp(x, xs, values)
-    return max(float(v), 0.0)
+    from scipy.interpolate import interp1d
+
+    return max(float(interp1d(xs, values, fill_value="extrapolate")(x)), 0.0)
 
 
 def hull_form(sec, st: xr.Dataset, cfg: dict | None = None) -> HullForm:
@@ -401,7 +399,7 @@ def hull_form(sec, st: xr.Dataset, cfg: dict | None = None) -> HullForm:
     if stern not in STERN_SHAPE:
         raise StabflowError(f"manoeuvring.resistance.stern {stern!r} is not one of {sorted(STERN_SHAPE)}")
     return HullForm(length=L, breadth=B, draft=T, volume=float(st["volume"]), lcb=lcb, cm=float(sp["cm"]),
-                    cwp=float(st["waterplane_area"]) / (L * B), wetted_area=wetted_area(sec, st),
+                    cwp=float(st["waterplane_area"]) / (L * B), wetted_area=wetted_area(sec, st, zw),
                     draft_fwd=T, transom_area=float(transom), bulb_area=float(bulb), bulb_height=float(hb or 0.0),
                     stern=STERN_SHAPE[stern],
                     appendages=tuple((float(a["area"]), float(a["k2"])) for a in cfg.get("appendages", [])))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from stabflow.constants import G
 from stabflow.plots._style import atomic_savefig, plt
 
 
@@ -126,13 +127,13 @@ def resistance_figure(ds: xr.Dataset, path) -> None:
     ax.annotate("commanded speed", (U, 0), textcoords="offset points", xytext=(3, 5), fontsize=8, rotation=90)
     fn_max = ds.attrs.get("resistance_froude_range_max")
     if fn_max is not None:
-        ax.axvspan(fn_max * np.sqrt(9.80665 * L), u[-1], color="0.9", zorder=0,
+        ax.axvspan(fn_max * np.sqrt(G * L), u[-1], color="0.9", zorder=0,
                    label=f"Fn > {fn_max:g} (beyond the range tabulated for trawlers)")
     ax.set_xlim(0, u[-1])
     ax.set_ylim(bottom=0)
     ax.set_xlabel("surge velocity [m/s]")
     ax.set_ylabel("resistance; surge-force amplitude (points) [kN]")
-    top = ax.secondary_xaxis("top", functions=(lambda x: x / np.sqrt(9.80665 * L), lambda f: f * np.sqrt(9.80665 * L)))
+    top = ax.secondary_xaxis("top", functions=(lambda x: x / np.sqrt(G * L), lambda f: f * np.sqrt(G * L)))
     top.set_xlabel("Froude number")
     ax.legend(fontsize=8, title=f"points: FK surge-force amplitude at the celerity, H {ds.attrs['resistance_wave_height']:g} m",
               title_fontsize=8)

@@ -25,6 +25,7 @@ import xarray as xr
 import yaml
 
 from stabflow import __version__
+from stabflow.constants import G
 
 PARTICULARS = ["volume", "mass", "draft_mid", "trim_upright", "lcb", "lcg", "kb", "bm", "km", "kg", "gm",
                "waterplane_area", "gz_max", "heel_gz_max", "heel_vanishing"]
@@ -520,10 +521,11 @@ def broaching_page(results: Path, config: dict, figdir: Path) -> str | None:
              "surge": float(d.surf_riding_surge_only[i]), "six": float(d.surf_riding_six_dof[i]),
              "wave": float(d.surf_riding_melnikov_wave_force[i])}
             for i in range(d.sizes.get("surf_case", 0))]
+    from stabflow.steps import broaching_figure_names
+
     figs = _optional_figures(results, figdir, f"broaching/{ship}_{{}}.png",
-                             tuple(f"motions_{lo}" for lo in d.loading.values) + ("strip", "manoeuvres", "map",
-                                                                                  "resistance"))
-    figures = {"motions": [{"loading": str(lo), "file": figs[f"motions_{lo}"]} for lo in d.loading.values],
+                             tuple(dict.fromkeys(broaching_figure_names(config) + ["map"])))
+    figures = {"motions": [{"loading": str(lo), "file": figs.get(f"motions_{lo}")} for lo in d.loading.values],
                "strip": figs["strip"], "manoeuvres": figs["manoeuvres"], "map": figs["map"],
                "resistance": figs["resistance"]}
     pmap = None
@@ -597,13 +599,14 @@ def _scenario_ensembles(results: Path, config: dict, ship: str, d: xr.Dataset) -
             broach = int(e["broach_count"]) if "broach_count" in e else None
         rate, lo, hi = poisson_interval(k, hours)
         case = None
-        for lname in d.loading.values:
-            for cname in d.case.values:
-                r = d.sel(loading=lname, case=cname)
-                if (not np.isfinite(float(r.wavelength)) and c.get("kg") is not None
-                        and abs(float(r.kg) - float(c["kg"])) < 1e-3 and float(r.wave_height) == float(c["sea"]["hs"])
-                        and float(c["heading_deg"]) == float(b["heading_deg"]) and float(c["speed_kn"]) == float(b["speed_kn"])):
-                    case = f"{cname}, {lname} loading"
+        if (c.get("kg") is not None and float(c["heading_deg"]) == float(b["heading_deg"])
+                and float(c["speed_kn"]) == float(b["speed_kn"])):
+            for lname in d.loading.values:
+                for cname in d.case.values:
+                    r = d.sel(loading=lname, case=cname)
+                    if (not np.isfinite(float(r.wavelength)) and abs(float(r.kg) - float(c["kg"])) < 1e-3
+                            and float(r.wave_height) == float(c["sea"]["hs"])):
+                        case = f"{cname}, {lname} loading"
         out.append({"name": c["name"], "hs": float(c["sea"]["hs"]), "spectrum": c["sea"]["spectrum"],
                     "heading": float(c["heading_deg"]), "speed": float(c["speed_kn"]), "kg": c.get("kg"),
                     "records": n, "lost": lost, "duration": float(c["duration"]), "warmup": float(c.get("warmup_s", 0.0)),
@@ -634,7 +637,7 @@ def _resistance_summary(d: xr.Dataset) -> dict | None:
             "transom": float(a.get("resistance_transom_area", np.nan)), "bulb": float(a.get("resistance_bulb_area", np.nan)),
             "outside": a.get("resistance_outside_range", ""),
             "fn_max": float(a.get("resistance_froude_range_max", np.nan)), "speed": U,
-            "fn": U / np.sqrt(9.80665 * float(a["manoeuvre_length"])), "r_u": at("resistance", U),
+            "fn": U / np.sqrt(G * float(a["manoeuvre_length"])), "r_u": at("resistance", U),
             "line_u": at("resistance_friction_only", U), "height": float(a["resistance_wave_height"]), "waves": waves}
 
 
